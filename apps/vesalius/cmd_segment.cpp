@@ -1,0 +1,76 @@
+// vesalius segment: tissue classes of a scan as a label map with its label table and a slice picture.
+#include "common.h"
+
+#include "vesalius/io/image_io.h"
+#include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/viz/slice_overlay.h"
+
+#include <iostream>
+
+namespace vesalius::cli {
+
+namespace {
+
+struct SegmentOptions {
+  std::string scan, modality = "ct", out, png, series;
+  double skinThickness = 2.0;
+  CommonOptions common;
+};
+
+// The PNG beside the label map: "labels.nii.gz" -> "labels.png".
+std::string defaultPngPath(const std::string& labels) {
+  const std::string ext = fileExtension(labels);
+  return labels.substr(0, labels.size() - ext.size()) + ".png";
+}
+
+void runSegment(const SegmentOptions& o) {
+  io::Report report("segment");
+  report.input("scan", o.scan);
+  report.parameter("modality", o.modality);
+  report.parameter("skin_thickness_mm", o.skinThickness);
+  Progress progress(o.common.progressStyle());
+
+  Image scan;
+  {
+    auto timer = report.time("read scan");
+    scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
+  }
+  segmentation::CtTissueOptions options;
+  options.skinThicknessMm = o.skinThickness;
+  LabelMap labels;
+  {
+    auto timer = report.time("segment");
+    labels = segmentation::segmentCtTissues(scan, options, &progress);
+  }
+  io::writeLabelMap(o.out, labels, o.common.writeOptions());
+  const std::string png = o.png.empty() ? defaultPngPath(o.out) : o.png;
+  viz::OverlayOptions overlay;
+  overlay.write = o.common.writeOptions();
+  viz::writeSliceOverlayPng(scan, labels, png, overlay);
+  report.output("labels", o.out);
+  report.output("png", png);
+  o.common.finish(report);
+  std::cout << "labels: " << o.out << "\npicture: " << png << '\n';
+}
+
+}  // namespace
+
+void addSegmentCommand(CLI::App& app) {
+  auto o = std::make_shared<SegmentOptions>();
+  CLI::App* cmd = app.add_subcommand("segment", "Segment a scan into tissue classes (skin, fat, soft tissue, bone)");
+  cmd->add_option("--scan", o->scan, "Scan: NIfTI, NRRD, MetaImage, or a DICOM folder")->required();
+  cmd->add_option("--series", o->series, "DICOM series UID when the folder holds several");
+  cmd->add_option("--modality", o->modality, "Scan modality (CT tissue classes use Hounsfield units)")
+      ->check(CLI::IsMember({"ct"}))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Label map to write (.nii.gz, .nrrd, .mha); a .tsv label table goes beside it")
+      ->required();
+  cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");
+  cmd->add_option("--skin-thickness", o->skinThickness, "Skin shell thickness in mm")->capture_default_str();
+  addCommonOptions(*cmd, o->common);
+  cmd->footer("Example:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct "
+              "--out labels.nii.gz");
+  cmd->callback([o] { runSegment(*o); });
+}
+
+}  // namespace vesalius::cli

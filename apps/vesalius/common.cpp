@@ -1,0 +1,17 @@
+#include "common.h"
+
+namespace vesalius::cli {
+
+void CommonOptions::finish(const io::Report& report) const {
+  if (!this->report.empty()) report.write(this->report, writeOptions());
+}
+
+void addCommonOptions(CLI::App& command, CommonOptions& options) {
+  command.add_option("--progress", options.progress, "Progress display: none, bar, slicer (3D Slicer CLI), auto")
+      ->check(CLI::IsMember({"none", "bar", "slicer", "auto"}))
+      ->capture_default_str();
+  command.add_flag("--force", options.force, "Replace output files that already exist");
+  command.add_option("--report", options.report, "Write a JSON report (inputs, parameters, stage times, metrics)");
+}
+
+}  // namespace vesalius::cli

@@ -1,0 +1,36 @@
+// What every `vesalius` subcommand shares: the common options and how a command's run is wrapped.
+#pragma once
+
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/core/progress.h"
+#include "vesalius/io/report.h"
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <string>
+
+namespace vesalius::cli {
+
+struct CommonOptions {
+  std::string progress = "auto";  // none | bar | slicer | auto
+  bool force = false;             // replace existing outputs
+  std::string report;             // JSON report path, empty for none
+
+  WriteOptions writeOptions() const { return WriteOptions{force}; }
+  Progress::Style progressStyle() const { return Progress::parseStyle(progress); }
+  // Writes the report if one was asked for.
+  void finish(const io::Report& report) const;
+};
+
+// Adds --progress, --force and --report to a subcommand.
+void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+// Each subcommand registers itself on the top-level app.
+void addInfoCommand(CLI::App& app);
+void addMarkersCommand(CLI::App& app);
+void addSegmentCommand(CLI::App& app);
+void addSurfaceCommand(CLI::App& app);
+void addDemoCommand(CLI::App& app);
+
+}  // namespace vesalius::cli

@@ -1,0 +1,35 @@
+// vesalius: patient-specific anatomical models from CT and MRI scans. One subcommand per step.
+#include "common.h"
+
+#include "vesalius/core/error.h"
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Vesalius: patient-specific anatomical models from CT and MRI scans.", "vesalius"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", VESALIUS_VERSION);
+  app.footer(
+      "Exit codes: 0 ok, 2 usage, 3 bad input, 4 numerical failure.\n"
+      "Example:  vesalius demo --out demo-output\n"
+      "Run 'vesalius COMMAND --help' for the options and an example of each command.");
+  vesalius::cli::addInfoCommand(app);
+  vesalius::cli::addSegmentCommand(app);
+  vesalius::cli::addSurfaceCommand(app);
+  vesalius::cli::addMarkersCommand(app);
+  vesalius::cli::addDemoCommand(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, version, or the parse error
+    return code == 0 ? vesalius::kExitOk : vesalius::kExitUsage;
+  } catch (const vesalius::Error& e) {
+    std::cerr << "vesalius: " << e.what() << '\n';
+    return e.exitCode();
+  } catch (const std::exception& e) {
+    std::cerr << "vesalius: unexpected error: " << e.what() << '\n';
+    return 1;
+  }
+  return vesalius::kExitOk;
+}

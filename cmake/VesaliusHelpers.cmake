@@ -1,0 +1,40 @@
+# Helpers that keep each module's CMakeLists.txt to a few lines.
+
+# Flags for every target of ours: warnings, and the sanitizers when asked.
+function(vesalius_target_flags target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  if(VESALIUS_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(VESALIUS_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# vesalius_module(NAME <m> SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
+# Creates library vesalius_<m> with alias vesalius::<m>; headers live in include/vesalius/<m>/.
+function(vesalius_module)
+  cmake_parse_arguments(M "" "NAME" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
+  add_library(vesalius_${M_NAME} ${M_SOURCES})
+  add_library(vesalius::${M_NAME} ALIAS vesalius_${M_NAME})
+  target_include_directories(vesalius_${M_NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(vesalius_${M_NAME} PUBLIC ${M_PUBLIC_LIBS} PRIVATE ${M_PRIVATE_LIBS})
+  set_target_properties(vesalius_${M_NAME} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  vesalius_target_flags(vesalius_${M_NAME})
+endfunction()
+
+# vesalius_test(NAME <t> SOURCES ... LIBS ... LABELS ...)
+# A GoogleTest executable whose tests ctest discovers, each carrying LABELS. Tests find the shipped
+# data through the VESALIUS_TESTDATA macro and may write under VESALIUS_TEST_OUTPUT.
+function(vesalius_test)
+  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${T_NAME} PRIVATE
+    VESALIUS_TESTDATA="${PROJECT_SOURCE_DIR}/testdata"
+    VESALIUS_TEST_OUTPUT="${PROJECT_BINARY_DIR}/test-output/${T_NAME}")
+  vesalius_target_flags(${T_NAME})
+  gtest_discover_tests(${T_NAME} PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+endfunction()

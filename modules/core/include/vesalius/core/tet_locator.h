@@ -1,0 +1,50 @@
+// Point location in a tetrahedral mesh: which tet holds a point, and its barycentric coordinates.
+//
+// Build once, query many times (thread-safe). Used to embed surfaces, markers and tissue vertices in
+// tet meshes (seed 001 §3.4, seed 002 §4.3).
+#pragma once
+
+#include "vesalius/core/mesh.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <optional>
+#include <vector>
+
+namespace vesalius {
+
+struct TetLocation {
+  int tet = -1;
+  Eigen::Vector4d barycentric = Eigen::Vector4d::Zero();  // weights of T(tet, 0..3), summing to 1
+};
+
+class TetLocator {
+ public:
+  // V: #V by 3, T: #T by 4. The locator keeps copies of both.
+  TetLocator(const MatrixX3d& V, const MatrixX4i& T);
+
+  // The tet containing p (within `tolerance` in barycentric terms), or nothing if p is outside.
+  std::optional<TetLocation> locate(const Eigen::Vector3d& p, double tolerance = 1e-9) const;
+  // The containing tet if there is one, else the tet whose clamped barycentric point is nearest to p;
+  // barycentric weights are then those of the nearest point (all in [0, 1]).
+  TetLocation locateOrNearest(const Eigen::Vector3d& p) const;
+  // One query per row of P, in parallel.
+  std::vector<TetLocation> locateOrNearest(const MatrixX3d& P) const;
+
+  // Barycentric coordinates of p with respect to tet t (may be outside [0, 1]).
+  Eigen::Vector4d barycentric(int t, const Eigen::Vector3d& p) const;
+
+ private:
+  struct Node {
+    Eigen::AlignedBox3d box;
+    int left = -1, right = -1;
+    int begin = 0, end = 0;
+  };
+  MatrixX3d V_;
+  MatrixX4i T_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace vesalius

@@ -1,0 +1,114 @@
+// The marker file formats, each as a pair of functions on text: parse (text -> MarkerSet) and format
+// (MarkerSet -> text). They take and give text rather than paths so that they can be fuzzed and tested
+// without files; marker_io.h picks one by extension and does the file work.
+//
+// Every parser returns positions in LPS millimetres, converting RAS inputs, and throws BadInput naming
+// `source` (and the line, where the format has lines) on anything it cannot read. Every formatter
+// writes LPS. What each format keeps:
+//
+//   format        label  kind  status  flags  description  template position
+//   .mrk.json     yes    yes   yes     yes    yes          yes
+//   .fcsv         yes    no    yes     yes    yes          no
+//   .csv          yes    yes   yes     no     no           no
+//   .annot        yes    no    no      no     no           no
+//
+// A format that does not store the kind reads every marker as the caller's `defaultKind`.
+#pragma once
+
+#include "vesalius/core/grid.h"
+#include "vesalius/core/markers.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vesalius::io {
+
+// ---- 3D Slicer markups JSON (.mrk.json) ----
+//
+// Reads any markups schema v1.x ("@schema" must name markups-schema-v1.<minor>.<patch>.json; a file
+// without "@schema" is BadInput). Every markup must be of type "Fiducial" (a point list); a Line, Curve,
+// Plane, ROI... is BadInput, since its points are not markers. coordinateSystem "LPS" (the default when
+// absent, as in Slicer) or "RAS"; coordinateUnits "mm" (default) or "um". A control point without
+// positionStatus (older files) is "defined"; one without a position is "undefined", as Slicer reads it.
+//
+// The markup's "name" gives the kind of all its points: "landmarks", "icp", "attachments" (or the
+// singular names of markerKindName); any other or no name gives `defaultKind`. All markups of a file are
+// read into one set, in file order; set.name is the first markup name that is not a kind name.
+//
+// A marker's templatePosition lives in a Vesalius key that Slicer keeps but ignores:
+//   control point  "vesalius": {"templatePosition": [x, y, z]}
+// in the markup's coordinate system, like "position".
+MarkerSet parseSlicerMarkups(std::string_view text, const std::string& source, MarkerKind defaultKind);
+
+// Schema v1.0.3 laid out as Slicer 5 writes it (4-space indent, numeric arrays on one line), LPS, mm.
+// One Fiducial markup per kind present, named "landmarks", "icp", "attachments", in that order; an empty
+// set gives one empty "landmarks" markup (Slicer refuses a file without markups). Control point ids are
+// 1, 2, ... within each markup. Undefined and preview points are written with "position": "" as Slicer
+// does, so their positions are not kept.
+std::string formatSlicerMarkups(const MarkerSet& set);
+
+// ---- Legacy 3D Slicer fiducial CSV (.fcsv, Slicer 4.x and 5.x) ----
+//
+// Header lines "# Markups fiducial file version = V", "# CoordinateSystem = LPS|RAS|0|1" (Slicer's old
+// numeric flag: 0 = RAS, 1 = LPS; RAS when absent, as Slicer 4 assumed), "# columns = id,x,y,z,ow,ox,
+// oy,oz,vis,sel,lock,label,desc,associatedNodeID". Rows have those 14 fields, or 16 when written by
+// Slicer 4.11 and later, which add two fields the columns line does not name: field 15 is the position
+// status (0 undefined, 1 preview, 2 defined, Slicer's enum order) and field 16 is ignored (Slicer
+// writes 0). Fields are quoted as Slicer quotes them ("a, b"; "say ""hi"""). A file without the version
+// line (Slicer 3) or with a columns line that does not start with the 14 names above is BadInput, as is
+// the IJK coordinate system (flag 2).
+MarkerSet parseFcsv(std::string_view text, const std::string& source, MarkerKind defaultKind);
+
+// Version 4.11 layout, "# CoordinateSystem = LPS", 16 fields per row (ow,ox,oy,oz = 0,0,0,1, the LPS
+// form of no rotation, as Slicer writes it).
+std::string formatFcsv(const MarkerSet& set);
+
+// ---- Plain CSV table (.csv) ----
+//
+// A header row naming the columns, in any order: "label", either "l,p,s" (LPS) or "r,a,s" (RAS, converted),
+// and optionally "kind" (landmark|icp|attachment, empty = `defaultKind`) and "status"
+// (defined|undefined|preview, empty = defined). Names are case-insensitive; other columns are ignored.
+// Coordinates of an undefined marker may be empty. Fields may be quoted as in RFC 4180.
+MarkerSet parseMarkerCsv(std::string_view text, const std::string& source, MarkerKind defaultKind);
+
+// Header "label,l,p,s,kind,status"; an undefined marker's coordinates are left empty.
+std::string formatMarkerCsv(const MarkerSet& set);
+
+// ---- ITK-SNAP annotations (.annot) ----
+//
+// ITK-SNAP saves annotations (Annotation mode, "Save annotations") as its Registry written as XML:
+//   <registry>
+//     <entry key="Format" value="ITK-SNAP Annotation File" />  <entry key="FormatDate" value="20150624" />
+//     <folder key="Annotations" >  <entry key="ArraySize" value="N" />
+//       <folder key="Element[i]" >  <entry key="Type" value="LandmarkAnnotation" />
+//         <entry key="Pos" value="x y z" />  <entry key="Text" value="label" />  ...
+// Landmark positions are continuous voxel coordinates of the main image in which voxel (i, j, k) covers
+// [i, i+1) x [j, j+1) x [k, k+1), so its centre is at (i+0.5, j+0.5, k+0.5); the scan's geometry maps
+// them to LPS: world = indexToWorld(pos - 0.5). LineSegmentAnnotation (rulers) and unknown types are
+// skipped, as ITK-SNAP skips unknown types. Every landmark is read as a defined marker of `defaultKind`.
+MarkerSet parseItkSnapAnnotations(std::string_view text, const std::string& source, const GridGeometry& scan,
+                                  MarkerKind defaultKind);
+
+// The same Registry XML as ITK-SNAP writes. Each defined marker becomes a LandmarkAnnotation on the
+// axial plane, visible in all planes. Throws UsageError for an undefined or preview marker, which the
+// format cannot hold.
+std::string formatItkSnapAnnotations(const MarkerSet& set, const GridGeometry& scan);
+
+// ---- Text helpers shared by the text formats ----
+
+// The shortest decimal text that reads back (strtod) as exactly `value`, e.g. "0.1", "-12", "1e-300".
+std::string formatShortest(double value);
+
+// File content fit for a one-line error message: control characters become '?', and text longer than
+// `maxLength` is cut and ends in "...".
+std::string printable(std::string_view text, std::size_t maxLength = 60);
+
+// Splits one line into fields as 3D Slicer's CSV codec does: a field that starts with '"' is quoted,
+// "" inside it is one '"', and the separator inside quotes is kept.
+std::vector<std::string> splitCsvRow(std::string_view line, char separator = ',');
+// Quotes a field if it holds the separator or '"' (doubling the quotes). Throws UsageError if it holds a
+// line break, which no line-based reader of these formats can read back.
+std::string quoteCsvField(const std::string& field, char separator = ',');
+
+}  // namespace vesalius::io

@@ -1,0 +1,371 @@
+// ITK side of image files: NIfTI, NRRD, MetaImage and single DICOM files through itk::ImageFileReader
+// and itk::ImageFileWriter, DICOM series through itk::ImageSeriesReader, and the NIfTI checks ITK lacks.
+// Exchanges plain data only (see image_io_itk.h for why).
+#include "image_io_itk.h"
+
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/core/error.h"
+
+#include <itkGDCMImageIO.h>
+#include <itkGDCMImageIOFactory.h>
+#include <itkImageFileReader.h>
+#include <itkImageFileWriter.h>
+#include <itkImageIOFactory.h>
+#include <itkImageSeriesReader.h>
+#include <itkMetaImageIOFactory.h>
+#include <itkNiftiImageIOFactory.h>
+#include <itkNrrdImageIOFactory.h>
+#include <itk_zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <type_traits>
+
+namespace vesalius::io::itk_seam {
+
+void registerImageFactories() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    itk::NiftiImageIOFactory::RegisterOneFactory();
+    itk::NrrdImageIOFactory::RegisterOneFactory();
+    itk::MetaImageIOFactory::RegisterOneFactory();
+    itk::GDCMImageIOFactory::RegisterOneFactory();
+  });
+}
+
+std::string itkErrorReason(const itk::ExceptionObject& error) {
+  std::string text = error.GetDescription();
+  // ITK prefixes descriptions with "ITK ERROR: ClassName(0x55d0c...): "; the address helps nobody.
+  const std::string prefix = "ITK ERROR: ";
+  if (text.compare(0, prefix.size(), prefix) == 0) {
+    const std::size_t close = text.find("): ");
+    text = close == std::string::npos ? text.substr(prefix.size()) : text.substr(close + 3);
+  }
+  std::size_t start = text.find_first_not_of(" \t\r\n");
+  if (start == std::string::npos) return "ITK could not process the file";
+  std::size_t end = text.find_first_of("\r\n", start);
+  text = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '.')) text.pop_back();
+  return text;
+}
+
+namespace {
+
+StoredType storedTypeOf(itk::IOComponentEnum component, const std::string& path) {
+  using C = itk::IOComponentEnum;
+  switch (component) {
+    case C::UCHAR: return StoredType::UInt8;
+    case C::CHAR: return StoredType::Int8;
+    case C::USHORT: return StoredType::UInt16;
+    case C::SHORT: return StoredType::Int16;
+    case C::UINT: return StoredType::UInt32;
+    case C::INT: return StoredType::Int32;
+    case C::FLOAT: return StoredType::Float32;
+    // 64-bit integers have no PixelType of their own; float64 is the closest type that keeps their range.
+    case C::LONG:
+    case C::ULONG:
+    case C::LONGLONG:
+    case C::ULONGLONG:
+    case C::DOUBLE: return StoredType::Float64;
+    default:
+      throw BadInput(path, std::string("unsupported voxel component type ") +
+                               itk::ImageIOBase::GetComponentTypeAsString(component));
+  }
+}
+
+// NIfTI files that ITK reads without complaint although they are broken: it fills the missing voxels of a
+// truncated file silently and reports a zero pixdim as "no orthonormal definition found". So we look at the
+// header (NIfTI-1 or -2, either byte order, gzipped or not) and count the bytes ourselves.
+struct NiftiLayout {
+  int axes = 0;                    // dim[0], at most 3 counted
+  std::array<double, 3> pixdim{};  // pixdim[1..axes]: voxel spacing
+  std::uint64_t dataEnd = 0;       // vox_offset + voxel bytes; 0 when voxels live in a separate .img
+};
+
+template <class T>
+T headerField(const unsigned char* header, std::size_t offset, bool swapped) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, header + offset, sizeof(T));
+  if (swapped) std::reverse(bytes, bytes + sizeof(T));
+  T value;
+  std::memcpy(&value, bytes, sizeof(T));
+  return value;
+}
+
+// Field offsets of the two header versions; the NIfTI-2 fields are 64-bit.
+template <class DimType, class PixdimType, class OffsetType>
+NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t dimAt, std::size_t bitpixAt,
+                        std::size_t pixdimAt, std::size_t offsetAt, bool singleFile) {
+  NiftiLayout layout;
+  const auto dim = [&](int n) {
+    return double(headerField<DimType>(header, dimAt + n * sizeof(DimType), swapped));
+  };
+  const int dimensions = int(dim(0));
+  if (dimensions < 1 || dimensions > 7) return layout;
+  layout.axes = std::min(dimensions, 3);
+  double voxels = 1;
+  for (int n = 1; n <= dimensions; ++n) voxels *= std::max(dim(n), 1.0);
+  for (int n = 0; n < layout.axes; ++n)
+    layout.pixdim[n] =
+        double(headerField<PixdimType>(header, pixdimAt + (n + 1) * sizeof(PixdimType), swapped));
+  const double bitpix = headerField<std::int16_t>(header, bitpixAt, swapped);
+  const double offset = double(headerField<OffsetType>(header, offsetAt, swapped));
+  if (singleFile && bitpix > 0 && offset >= 0) layout.dataEnd = std::uint64_t(offset + voxels * bitpix / 8);
+  return layout;
+}
+
+std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int length) {
+  if (length < 348) return std::nullopt;
+  bool swapped = false;
+  std::int32_t size = headerField<std::int32_t>(header, 0, false);
+  if (size != 348 && size != 540) {
+    swapped = true;
+    size = headerField<std::int32_t>(header, 0, true);
+  }
+  if (size == 348)
+    return niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108,
+                                                   std::memcmp(header + 344, "n+1", 4) == 0);
+  if (size == 540 && length >= 540)
+    return niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168,
+                                                           std::memcmp(header + 4, "n+2", 4) == 0);
+  return std::nullopt;
+}
+
+std::string shortNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+using GzFile = std::unique_ptr<std::remove_pointer_t<gzFile>, decltype(&gzclose)>;
+
+// Decompressed bytes left in `file`; throws BadInput if the gzip stream is cut short or corrupt.
+std::uint64_t remainingBytes(gzFile file, const std::string& path) {
+  std::vector<unsigned char> buffer(1 << 18);
+  std::uint64_t total = 0;
+  while (true) {
+    const int n = gzread(file, buffer.data(), unsigned(buffer.size()));
+    if (n < 0) {
+      int code = 0;
+      throw BadInput(path,
+                     std::string("compressed data is cut short or corrupt (") + gzerror(file, &code) + ")");
+    }
+    if (n == 0) return total;
+    total += std::uint64_t(n);
+  }
+}
+
+// Throws BadInput for a non-positive spacing and, if `wholeFile`, for a file shorter than its header says.
+void checkNiftiFile(const std::string& path, bool wholeFile) {
+  GzFile file(gzopen(path.c_str(), "rb"), &gzclose);
+  if (!file) return;  // ITK reports unreadable files
+  gzbuffer(file.get(), 1 << 18);
+  unsigned char header[540];
+  const int length = gzread(file.get(), header, sizeof header);
+  const std::optional<NiftiLayout> layout = parseNiftiHeader(header, length);
+  if (!layout) return;
+  for (int axis = 0; axis < layout->axes; ++axis)
+    if (!(std::isfinite(layout->pixdim[axis]) && layout->pixdim[axis] > 0))
+      throw BadInput(path, "voxel spacing pixdim[" + std::to_string(axis + 1) + "] is " +
+                               shortNumber(layout->pixdim[axis]) + " (must be positive)");
+  if (!wholeFile || layout->dataEnd == 0) return;
+  const bool compressed = !gzdirect(file.get());
+  const std::uint64_t size = compressed ? std::uint64_t(length) + remainingBytes(file.get(), path)
+                                        : std::uint64_t(std::filesystem::file_size(path));
+  if (size < layout->dataEnd)
+    throw BadInput(path, "file is truncated: " + std::to_string(size) + " of " +
+                             std::to_string(layout->dataEnd) +
+                             (compressed ? " bytes after decompression" : " bytes"));
+}
+
+bool isNifti(const std::string& path) {
+  const std::string extension = fileExtension(path);
+  return extension == ".nii" || extension == ".nii.gz";
+}
+
+// An ImageIO that has read the header of `path`; throws BadInput if no ITK reader accepts the file or our
+// own NIfTI checks fail (`wholeFile`: also check that all voxel bytes are there).
+itk::ImageIOBase::Pointer openImageIO(const std::string& path, bool wholeFile) {
+  if (isNifti(path)) checkNiftiFile(path, wholeFile);
+  registerImageFactories();
+  itk::ImageIOBase::Pointer io =
+      itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::IOFileModeEnum::ReadMode);
+  if (!io) throw BadInput(path, "not an image file ITK can read (NIfTI, NRRD, MetaImage or DICOM)");
+  io->SetFileName(path);
+  try {
+    io->ReadImageInformation();
+  } catch (const itk::ExceptionObject& error) {
+    throw BadInput(path, itkErrorReason(error));
+  }
+  return io;
+}
+
+// Rejects what a 3-D reader would silently cut: 4-D series (only their first volume would be read).
+void check3D(const itk::ImageIOBase& io, const std::string& path) {
+  for (unsigned axis = 3; axis < io.GetNumberOfDimensions(); ++axis)
+    if (io.GetDimensions(axis) > 1)
+      throw BadInput(path, std::to_string(io.GetNumberOfDimensions()) + "-D image with " +
+                               std::to_string(io.GetDimensions(axis)) + " entries along axis " +
+                               std::to_string(axis) + "; only 3-D scans are read");
+}
+
+// Rejects what a scalar reader would silently turn into grey values: RGB and vector voxels.
+void checkScalar(const itk::ImageIOBase& io, const std::string& path) {
+  if (io.GetNumberOfComponents() > 1)
+    throw BadInput(path, std::to_string(io.GetNumberOfComponents()) +
+                             " components per voxel (RGB or vector image); only scalar scans are read");
+}
+
+RawHeader headerOf(const itk::ImageIOBase& io, const std::string& path) {
+  RawHeader header;
+  const unsigned dimensions = std::min(io.GetNumberOfDimensions(), 3u);
+  for (unsigned axis = 0; axis < 3; ++axis) header.size[axis] = 1;
+  for (unsigned axis = 0; axis < dimensions; ++axis) {
+    header.size[axis] = int(io.GetDimensions(axis));
+    header.spacing[axis] = io.GetSpacing(axis);
+    header.origin[axis] = io.GetOrigin(axis);
+    const std::vector<double> column = io.GetDirection(axis);
+    for (unsigned row = 0; row < dimensions; ++row) header.direction[3 * row + axis] = column[row];
+  }
+  header.storedType = storedTypeOf(io.GetComponentType(), path);
+  header.components = int(io.GetNumberOfComponents());
+  return header;
+}
+
+template <class ImageType>
+void copyGeometry(const ImageType& image, RawHeader& header) {
+  const auto size = image.GetLargestPossibleRegion().GetSize();
+  for (unsigned axis = 0; axis < 3; ++axis) {
+    header.size[axis] = int(size[axis]);
+    header.spacing[axis] = image.GetSpacing()[axis];
+    header.origin[axis] = image.GetOrigin()[axis];
+    for (unsigned column = 0; column < 3; ++column)
+      header.direction[3 * axis + column] = image.GetDirection()(axis, column);
+  }
+}
+
+template <class T>
+T toStored(float value) {
+  if constexpr (std::is_integral_v<T>) {
+    if (std::isnan(value)) return T(0);
+    const double rounded = std::nearbyint(double(value));
+    const double low = double(std::numeric_limits<T>::lowest()), high = double(std::numeric_limits<T>::max());
+    return T(std::clamp(rounded, low, high));
+  } else {
+    return T(value);
+  }
+}
+
+template <class T>
+void writeAs(const std::string& path, const RawHeader& header, const std::vector<float>& values) {
+  using ImageType = itk::Image<T, 3>;
+  auto image = ImageType::New();
+  typename ImageType::RegionType region;
+  typename ImageType::SpacingType spacing;
+  typename ImageType::PointType origin;
+  typename ImageType::DirectionType direction;
+  for (unsigned axis = 0; axis < 3; ++axis) {
+    region.SetSize(axis, itk::SizeValueType(header.size[axis]));
+    spacing[axis] = header.spacing[axis];
+    origin[axis] = header.origin[axis];
+    for (unsigned column = 0; column < 3; ++column)
+      direction(axis, column) = header.direction[3 * axis + column];
+  }
+  image->SetRegions(region);
+  image->SetSpacing(spacing);
+  image->SetOrigin(origin);
+  image->SetDirection(direction);
+  image->Allocate();
+  std::transform(values.begin(), values.end(), image->GetBufferPointer(), toStored<T>);
+
+  auto writer = itk::ImageFileWriter<ImageType>::New();
+  writer->SetFileName(path);
+  writer->SetInput(image);
+  writer->SetUseCompression(true);
+  writer->Update();
+}
+
+}  // namespace
+
+RawHeader readImageHeader(const std::string& path) {
+  itk::ImageIOBase::Pointer io = openImageIO(path, false);
+  check3D(*io, path);
+  return headerOf(*io, path);
+}
+
+template <class T>
+RawVolume<T> readImageFile(const std::string& path) {
+  itk::ImageIOBase::Pointer io = openImageIO(path, true);
+  check3D(*io, path);
+  checkScalar(*io, path);
+  RawVolume<T> volume;
+  volume.header = headerOf(*io, path);
+  using ImageType = itk::Image<T, 3>;
+  auto reader = itk::ImageFileReader<ImageType>::New();
+  reader->SetFileName(path);
+  reader->SetImageIO(io);
+  try {
+    reader->Update();
+  } catch (const itk::ExceptionObject& error) {
+    throw BadInput(path, itkErrorReason(error));
+  }
+  const ImageType& image = *reader->GetOutput();
+  copyGeometry(image, volume.header);
+  const T* buffer = image.GetBufferPointer();
+  volume.values.assign(buffer, buffer + image.GetLargestPossibleRegion().GetNumberOfPixels());
+  return volume;
+}
+
+template RawVolume<float> readImageFile<float>(const std::string&);
+template RawVolume<double> readImageFile<double>(const std::string&);
+template RawVolume<std::uint16_t> readImageFile<std::uint16_t>(const std::string&);
+
+void writeImageFile(const std::string& path, const RawHeader& header, const std::vector<float>& values) {
+  registerImageFactories();
+  try {
+    switch (header.storedType) {
+      case StoredType::UInt8: return writeAs<std::uint8_t>(path, header, values);
+      case StoredType::Int8: return writeAs<std::int8_t>(path, header, values);
+      case StoredType::UInt16: return writeAs<std::uint16_t>(path, header, values);
+      case StoredType::Int16: return writeAs<std::int16_t>(path, header, values);
+      case StoredType::UInt32: return writeAs<std::uint32_t>(path, header, values);
+      case StoredType::Int32: return writeAs<std::int32_t>(path, header, values);
+      case StoredType::Float32: return writeAs<float>(path, header, values);
+      case StoredType::Float64: return writeAs<double>(path, header, values);
+    }
+  } catch (const itk::ExceptionObject& error) {
+    throw BadInput(path, "cannot write: " + itkErrorReason(error));
+  }
+}
+
+RawVolume<float> readDicomSlices(const std::string& folder, const std::vector<std::string>& files) {
+  registerImageFactories();
+  using ImageType = itk::Image<float, 3>;
+  auto io = itk::GDCMImageIO::New();
+  auto reader = itk::ImageSeriesReader<ImageType>::New();
+  reader->SetImageIO(io);
+  reader->SetFileNames(files);
+  try {
+    reader->Update();
+  } catch (const itk::ExceptionObject& error) {
+    throw BadInput(folder, itkErrorReason(error));
+  }
+  checkScalar(*io, folder);
+  const ImageType& image = *reader->GetOutput();
+  RawVolume<float> volume;
+  // After Update GDCMImageIO reports the type of the rescaled values (e.g. int16 HU), not the raw pixels.
+  volume.header.storedType = storedTypeOf(io->GetComponentType(), folder);
+  copyGeometry(image, volume.header);
+  const float* buffer = image.GetBufferPointer();
+  volume.values.assign(buffer, buffer + image.GetLargestPossibleRegion().GetNumberOfPixels());
+  return volume;
+}
+
+}  // namespace vesalius::io::itk_seam

@@ -1,0 +1,291 @@
+// Mesh files by extension, and mesh summaries (mesh_io.h).
+#include "vesalius/io/mesh_io.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/io/mesh_formats.h"
+#include "vesalius/io/text_file.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+namespace vesalius::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSurfaceExtensions = "(.stl, .obj, .ply, .vtk, .vtp)";
+constexpr const char* kTetExtensions = "(.vtu, .vtk, .node, .ele, .mesh, .msh)";
+
+// The dataset type of a VTK legacy file ("polydata", "unstructured_grid", ...), from its header: a
+// version line, a title line, ASCII or BINARY, then "DATASET <type>".
+std::string legacyDatasetType(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BadInput(path, "cannot open");
+  std::string line;
+  for (int i = 0; i < 4 && std::getline(in, line); ++i) {
+    if (i == 0 && line.rfind("# vtk DataFile", 0) != 0) break;
+    std::istringstream tokens(line);
+    std::string keyword, type;
+    tokens >> keyword >> type;
+    std::transform(keyword.begin(), keyword.end(), keyword.begin(), [](unsigned char c) { return std::toupper(c); });
+    std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (i == 3 && keyword == "DATASET") return type;
+  }
+  throw BadInput(path, "not a VTK legacy file (expected '# vtk DataFile' and a DATASET line)");
+}
+
+void requireDataset(const std::string& path, const std::string& wanted, const char* what) {
+  const std::string type = legacyDatasetType(path);
+  if (type != wanted) throw BadInput(path, "holds VTK " + type + ", not " + what);
+}
+
+// "liver.node" -> "liver".
+std::string withoutExtension(const std::string& path) {
+  return path.substr(0, path.size() - fileExtension(path).size());
+}
+
+void writeTextFile(const std::string& path, const std::string& content, const std::string& target) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  out.close();
+  if (!out) throw BadInput(target, "cannot write");
+}
+
+void writeTextAtomically(const std::string& path, const WriteOptions& options, const std::string& content) {
+  writeAtomically(path, options, [&](const std::string& temporary) { writeTextFile(temporary, content, path); });
+}
+
+TetMesh readTetGen(const std::string& path) {
+  const std::string base = withoutExtension(path);
+  const std::string face = fs::exists(base + ".face") ? readTextFile(base + ".face") : std::string();
+  return parseTetGen(readTextFile(base + ".node"), readTextFile(base + ".ele"), face, base);
+}
+
+// All three files or none: existing ones are checked before any is written, and a .face left from an
+// earlier mesh is removed (with force) so it cannot be read back with this one.
+void writeTetGen(const TetMesh& mesh, const std::string& path, const WriteOptions& options) {
+  const std::string base = withoutExtension(path);
+  const TetGenFiles files = formatTetGen(mesh);
+  const std::pair<std::string, const std::string*> outputs[] = {
+      {base + ".node", &files.node}, {base + ".ele", &files.ele}, {base + ".face", &files.face}};
+  if (!options.force)
+    for (const auto& [target, content] : outputs)
+      if (fs::exists(target)) throw UsageError(target + ": exists; pass --force to replace it");
+  for (const auto& [target, content] : outputs) {
+    if (!content->empty())
+      writeTextAtomically(target, options, *content);
+    else
+      fs::remove(target);
+  }
+}
+
+std::vector<std::string> attributeNames(const AttributeSet& attributes) {
+  std::vector<std::string> names;
+  for (const auto& entry : attributes.integer) names.push_back(entry.first);
+  for (const auto& entry : attributes.real) names.push_back(entry.first);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Vertex-connected components of the triangles (union-find with path halving).
+int triangleComponents(const TriMesh& mesh) {
+  std::vector<int> parent(static_cast<std::size_t>(mesh.V.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&parent](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 1; c < 3; ++c) parent[root(mesh.F(f, c))] = root(mesh.F(f, 0));
+  std::vector<bool> isRoot(parent.size(), false);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) isRoot[root(mesh.F(f, 0))] = true;
+  return static_cast<int>(std::count(isRoot.begin(), isRoot.end(), true));
+}
+
+void countEdges(const TriMesh& mesh, TriMeshSummary& summary) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = mesh.F(f, c), b = mesh.F(f, (c + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    summary.boundaryEdges += j - i == 1;
+    summary.nonManifoldEdges += j - i > 2;
+    i = j;
+  }
+}
+
+// Volume enclosed by a closed, consistently oriented surface: the sum of signed tet volumes from the origin.
+double enclosedVolume(const TriMesh& mesh) {
+  double sixTimesVolume = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    sixTimesVolume += a.dot(b.cross(c));
+  }
+  return sixTimesVolume / 6.0;
+}
+
+std::string boundsText(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
+  std::ostringstream out;
+  out << "bounds (mm): ";
+  for (int k = 0; k < 3; ++k) out << (k ? " x " : "") << "[" << min(k) << ", " << max(k) << "]";
+  return out.str();
+}
+
+std::string namesText(const char* what, const std::vector<std::string>& names) {
+  std::string out = std::string(what) + " attributes: ";
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
+  return out + (names.empty() ? "none" : "");
+}
+
+}  // namespace
+
+std::optional<MeshKind> meshFileKind(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".vtp") return MeshKind::kSurface;
+  if (ext == ".vtu" || ext == ".node" || ext == ".ele" || ext == ".mesh" || ext == ".msh")
+    return MeshKind::kTetrahedral;
+  if (ext != ".vtk") return std::nullopt;
+  const std::string type = legacyDatasetType(path);
+  if (type == "polydata") return MeshKind::kSurface;
+  if (type == "unstructured_grid") return MeshKind::kTetrahedral;
+  throw BadInput(path, "holds VTK " + type + ", neither polydata (a surface) nor an unstructured grid (a tet mesh)");
+}
+
+TriMesh readTriMesh(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  if (ext == ".stl") return parseStl(readBinaryFile(path), path);
+  if (ext == ".obj") return parseObj(readTextFile(path), path);
+  if (ext == ".vtk") requireDataset(path, "polydata", "polydata (a surface)");
+  if (ext == ".ply" || ext == ".vtk" || ext == ".vtp") return readVtkSurface(path);
+  throw BadInput(path, "not a surface mesh extension " + std::string(kSurfaceExtensions));
+}
+
+TetMesh readTetMesh(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  if (ext == ".node" || ext == ".ele") return readTetGen(path);
+  if (ext == ".mesh") return parseMedit(readTextFile(path), path);
+  if (ext == ".msh") return parseGmsh(readTextFile(path), path);
+  if (ext == ".vtk") requireDataset(path, "unstructured_grid", "an unstructured grid (a tet mesh)");
+  if (ext == ".vtu" || ext == ".vtk") return readVtkTetMesh(path);
+  throw BadInput(path, "not a tet mesh extension " + std::string(kTetExtensions));
+}
+
+void writeTriMesh(const std::string& path, const TriMesh& mesh, const MeshWriteOptions& options) {
+  mesh.validate("mesh to write to " + path);
+  const std::string ext = fileExtension(path);
+  if (ext == ".stl")
+    writeTextAtomically(path, options, options.binary ? formatStlBinary(mesh) : formatStlAscii(mesh));
+  else if (ext == ".obj")
+    writeTextAtomically(path, options, formatObj(mesh));
+  else if (ext == ".ply" || ext == ".vtk" || ext == ".vtp")
+    writeAtomically(path, options,
+                    [&](const std::string& temporary) { writeVtkSurface(mesh, temporary, options.binary); });
+  else
+    throw UsageError(path + ": not a surface mesh extension " + kSurfaceExtensions);
+}
+
+void writeTetMesh(const std::string& path, const TetMesh& mesh, const MeshWriteOptions& options) {
+  mesh.validate("mesh to write to " + path);
+  const std::string ext = fileExtension(path);
+  if (ext == ".node" || ext == ".ele")
+    writeTetGen(mesh, path, options);
+  else if (ext == ".mesh")
+    writeTextAtomically(path, options, formatMedit(mesh));
+  else if (ext == ".msh")
+    writeTextAtomically(path, options, formatGmsh(mesh));
+  else if (ext == ".vtu" || ext == ".vtk")
+    writeAtomically(path, options,
+                    [&](const std::string& temporary) { writeVtkTetMesh(mesh, temporary, options.binary); });
+  else
+    throw UsageError(path + ": not a tet mesh extension " + kTetExtensions);
+}
+
+TriMeshSummary summarize(const TriMesh& mesh) {
+  TriMeshSummary summary;
+  summary.vertices = mesh.V.rows();
+  summary.triangles = mesh.F.rows();
+  if (mesh.V.rows() > 0) {
+    summary.min = mesh.V.colwise().minCoeff();
+    summary.max = mesh.V.colwise().maxCoeff();
+  }
+  countEdges(mesh, summary);
+  summary.components = triangleComponents(mesh);
+  summary.closed = mesh.F.rows() > 0 && summary.boundaryEdges == 0 && summary.nonManifoldEdges == 0;
+  if (summary.closed) summary.volume = enclosedVolume(mesh);
+  summary.hasUv = mesh.FUV.rows() > 0;
+  summary.vertexAttributes = attributeNames(mesh.vertexAttributes);
+  summary.faceAttributes = attributeNames(mesh.faceAttributes);
+  return summary;
+}
+
+TetMeshSummary summarize(const TetMesh& mesh) {
+  TetMeshSummary summary;
+  summary.vertices = mesh.V.rows();
+  summary.tets = mesh.T.rows();
+  summary.triangles = mesh.F.rows();
+  if (mesh.V.rows() > 0) {
+    summary.min = mesh.V.colwise().minCoeff();
+    summary.max = mesh.V.colwise().maxCoeff();
+  }
+  const Eigen::VectorXd volumes = tetVolumes(mesh.V, mesh.T);
+  if (volumes.size() > 0) {
+    summary.totalVolume = volumes.sum();
+    summary.minVolume = volumes.minCoeff();
+    summary.maxVolume = volumes.maxCoeff();
+    summary.inverted = static_cast<long>((volumes.array() < 0).count());
+  }
+  const auto labels = mesh.tetAttributes.integer.find(kLabel);
+  if (labels != mesh.tetAttributes.integer.end())
+    for (Eigen::Index t = 0; t < labels->second.size(); ++t) ++summary.tetsPerLabel[labels->second(t)];
+  summary.vertexAttributes = attributeNames(mesh.vertexAttributes);
+  summary.tetAttributes = attributeNames(mesh.tetAttributes);
+  summary.faceAttributes = attributeNames(mesh.faceAttributes);
+  return summary;
+}
+
+std::string describe(const TriMeshSummary& s) {
+  std::ostringstream out;
+  out << std::setprecision(6) << "surface mesh: " << s.vertices << " vertices, " << s.triangles << " triangles, "
+      << s.components << " connected component(s), texture coordinates: " << (s.hasUv ? "yes" : "no") << "\n"
+      << boundsText(s.min, s.max) << "\n"
+      << "edges: " << s.boundaryEdges << " boundary, " << s.nonManifoldEdges << " non-manifold ("
+      << (s.closed ? "closed 2-manifold" : "not closed") << ")\n";
+  if (s.volume) out << "enclosed volume: " << *s.volume << " mm^3\n";
+  out << namesText("vertex", s.vertexAttributes) << "\n" << namesText("face", s.faceAttributes) << "\n";
+  return out.str();
+}
+
+std::string describe(const TetMeshSummary& s) {
+  std::ostringstream out;
+  out << std::setprecision(6) << "tet mesh: " << s.vertices << " vertices, " << s.tets << " tetrahedra, "
+      << s.triangles << " boundary triangles\n"
+      << boundsText(s.min, s.max) << "\n"
+      << "volume: " << s.totalVolume << " mm^3 total, tets from " << s.minVolume << " to " << s.maxVolume
+      << " mm^3, " << s.inverted << " inverted\n";
+  if (!s.tetsPerLabel.empty()) {
+    out << "labels (tets):";
+    for (const auto& [label, count] : s.tetsPerLabel) out << " " << label << " (" << count << ")";
+    out << "\n";
+  }
+  out << namesText("vertex", s.vertexAttributes) << "\n"
+      << namesText("tet", s.tetAttributes) << "\n"
+      << namesText("face", s.faceAttributes) << "\n";
+  return out.str();
+}
+
+}  // namespace vesalius::io

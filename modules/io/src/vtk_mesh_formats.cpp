@@ -1,0 +1,667 @@
+// The mesh formats read and written through VTK: PLY, VTK legacy, VTP, VTU (see mesh_io.h).
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/core/error.h"
+#include "vesalius/io/mesh_formats.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/text_file.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkCellTypes.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIntArray.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
+#include <vtkPLYReader.h>
+#include <vtkPLYWriter.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkPolyDataWriter.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkUnstructuredGridWriter.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <sstream>
+#include <type_traits>
+#include <vector>
+
+namespace vesalius::io {
+
+namespace {
+
+constexpr const char* kCornerUv = "corner_uv";
+constexpr const char* kSpaceArray = "SPACE";  // field data tag, as 3D Slicer names it
+
+// Keeps the first VTK error of an algorithm, so a failure becomes one BadInput line rather than text
+// on stderr and an empty output. Warnings are swallowed for the same reason.
+class ErrorCollector : public vtkCommand {
+ public:
+  static ErrorCollector* New() { return new ErrorCollector; }
+  void Execute(vtkObject*, unsigned long event, void* callData) override {
+    if (event != vtkCommand::ErrorEvent || !message_.empty() || !callData) return;
+    std::string text(static_cast<const char*>(callData));
+    // VTK prefixes "ClassName (0x...): "; the rest is the message.
+    const std::size_t prefix = text.find("): ");
+    if (prefix != std::string::npos) text.erase(0, prefix + 3);
+    message_ = text.substr(0, text.find('\n'));
+    if (message_.empty()) message_ = "VTK reported an error";
+  }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string message_;
+};
+
+// Catches what VTK prints with no object to observe: the legacy readers' generic warnings such as "Error
+// reading ascii data. Possible mismatch of datasize with declaration." mean a broken file.
+class CapturingOutputWindow : public vtkOutputWindow {
+ public:
+  static CapturingOutputWindow* New() { return new CapturingOutputWindow; }
+  void DisplayText(const char* text) override {
+    if (!message_.empty() || !text) return;
+    std::string message(text);
+    // "Generic Warning: In <source file>, line N" comes first; the message is on the next line.
+    if (message.find(": In ") < message.find('\n')) message.erase(0, message.find('\n') + 1);
+    message_ = message.substr(0, message.find('\n'));
+  }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string message_;
+};
+
+// Installs a CapturingOutputWindow, and silences VTK's logger on stderr, for its lifetime. Both are
+// global, so VTK work that uses this is serialised.
+class ScopedOutputCapture {
+ public:
+  ScopedOutputCapture()
+      : lock_(mutex()),
+        previous_(vtkOutputWindow::GetInstance()),
+        verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(capture_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~ScopedOutputCapture() {
+    vtkLogger::SetStderrVerbosity(verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  const std::string& message() const { return capture_->message(); }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
+  vtkNew<CapturingOutputWindow> capture_;
+};
+
+// Runs `algorithm` (Update for readers, Write for writers) and throws BadInput if VTK reported an error.
+template <class Algorithm, class Run>
+void runChecked(Algorithm* algorithm, const std::string& path, Run run) {
+  ScopedOutputCapture output;
+  vtkNew<ErrorCollector> errors;
+  algorithm->AddObserver(vtkCommand::ErrorEvent, errors);
+  algorithm->AddObserver(vtkCommand::WarningEvent, errors);
+  algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  if constexpr (std::is_base_of_v<vtkXMLReader, Algorithm>) {
+    algorithm->SetReaderErrorObserver(errors);
+    algorithm->SetParserErrorObserver(errors);
+  }
+  const bool ok = run();
+  if (!errors->message().empty()) throw BadInput(path, errors->message());
+  if (!output.message().empty()) throw BadInput(path, output.message());
+  if (!ok) throw BadInput(path, "VTK could not process the file");
+}
+
+void checkReadable(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BadInput(path, std::string("cannot open: ") + std::strerror(errno));
+}
+
+template <class Reader>
+void readChecked(Reader* reader, const std::string& path) {
+  checkReadable(path);
+  reader->SetFileName(path.c_str());
+  runChecked(reader, path, [reader] {
+    reader->Update();
+    return true;
+  });
+}
+
+template <class Writer>
+void writeChecked(Writer* writer, const std::string& path) {
+  writer->SetFileName(path.c_str());
+  runChecked(writer, path, [writer] { return writer->Write() == 1; });
+}
+
+// vtkPLYReader frees memory it never allocated when a file ends early, so the structure of a PLY file
+// is walked first: the header's elements and properties must be matched by the data that follows.
+struct PlyProperty {
+  int valueBytes = 0;
+  int countBytes = 0;  // lists only: size of the count that precedes the values
+};
+
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int plyTypeBytes(const std::string& type) {
+  static const std::map<std::string, int> kBytes = {
+      {"char", 1},   {"uchar", 1},  {"int8", 1},   {"uint8", 1},  {"short", 2},  {"ushort", 2},
+      {"int16", 2},  {"uint16", 2}, {"int", 4},    {"uint", 4},   {"int32", 4},  {"uint32", 4},
+      {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
+  const auto found = kBytes.find(type);
+  return found == kBytes.end() ? 0 : found->second;
+}
+
+// The header's format ("ascii", "binary_little_endian", "binary_big_endian") and elements; `bodyStart`
+// receives the offset of the data.
+std::string parsePlyHeader(const std::string& bytes, const std::string& path, std::vector<PlyElement>& elements,
+                           std::size_t& bodyStart) {
+  const std::size_t end = bytes.find("end_header");
+  const std::size_t newline = bytes.find('\n', end);
+  if (bytes.rfind("ply", 0) != 0 || end == std::string::npos || newline == std::string::npos)
+    throw BadInput(path, "not a PLY file (expected 'ply' ... 'end_header')");
+  bodyStart = newline + 1;
+  std::istringstream header(bytes.substr(0, end));
+  std::string line, format;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string keyword, a, b, c;
+    words >> keyword >> a >> b >> c;
+    if (keyword == "format") format = a;
+    if (keyword == "element") elements.push_back({a, std::strtoll(b.c_str(), nullptr, 10), {}});
+    if (keyword != "property") continue;
+    if (elements.empty()) throw BadInput(path, "PLY property before any element");
+    const bool list = a == "list";
+    PlyProperty property{plyTypeBytes(list ? c : a), list ? plyTypeBytes(b) : 0};
+    if (!property.valueBytes || (list && !property.countBytes))
+      throw BadInput(path, "PLY property with an unknown type: " + line);
+    elements.back().properties.push_back(property);
+  }
+  for (const PlyElement& e : elements)
+    if (e.count < 0) throw BadInput(path, "PLY element '" + e.name + "' has a negative count");
+  return format;
+}
+
+[[noreturn]] void plyEndsEarly(const std::string& path, const PlyElement& e, long long i) {
+  throw BadInput(path, "PLY data ends early, in " + e.name + " " + std::to_string(i + 1) + " of " +
+                           std::to_string(e.count));
+}
+
+// Walks binary data, reading list counts; throws if the data ends before the header says it should.
+void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
+                   const std::vector<PlyElement>& elements, const std::string& path) {
+  for (const PlyElement& e : elements)
+    for (long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        std::size_t values = 1;
+        if (p.countBytes) {
+          if (static_cast<std::size_t>(p.countBytes) > bytes.size() - offset) plyEndsEarly(path, e, i);
+          values = 0;
+          for (int k = 0; k < p.countBytes; ++k)
+            values = values << 8 | static_cast<unsigned char>(bytes[offset + (bigEndian ? k : p.countBytes - 1 - k)]);
+          offset += p.countBytes;
+        }
+        if (values * p.valueBytes > bytes.size() - offset) plyEndsEarly(path, e, i);
+        offset += values * p.valueBytes;
+      }
+}
+
+void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vector<PlyElement>& elements,
+                  const std::string& path) {
+  const std::vector<std::string_view> tokens = splitWhitespace(std::string_view(bytes).substr(offset));
+  std::size_t next = 0;
+  for (const PlyElement& e : elements)
+    for (long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        if (next >= tokens.size()) plyEndsEarly(path, e, i);
+        const long long values = p.countBytes ? std::strtoll(std::string(tokens[next++]).c_str(), nullptr, 10) : 1;
+        if (values < 0 || static_cast<std::size_t>(values) > tokens.size() - next) plyEndsEarly(path, e, i);
+        next += static_cast<std::size_t>(values);
+      }
+}
+
+void checkPlyStructure(const std::string& path) {
+  const std::string bytes = readBinaryFile(path);
+  std::vector<PlyElement> elements;
+  std::size_t bodyStart = 0;
+  const std::string format = parsePlyHeader(bytes, path, elements, bodyStart);
+  if (format == "ascii")
+    walkPlyAscii(bytes, bodyStart, elements, path);
+  else if (format == "binary_little_endian" || format == "binary_big_endian")
+    walkPlyBinary(bytes, bodyStart, format == "binary_big_endian", elements, path);
+  else
+    throw BadInput(path, "unknown PLY format '" + format + "'");
+}
+
+bool isIntegral(int type) {
+  switch (type) {
+    case VTK_CHAR: case VTK_SIGNED_CHAR: case VTK_UNSIGNED_CHAR: case VTK_SHORT: case VTK_UNSIGNED_SHORT:
+    case VTK_INT: case VTK_UNSIGNED_INT: case VTK_LONG: case VTK_UNSIGNED_LONG: case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG: case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Rows `rows` of array `a` as an attribute: integer when it has one integral component that fits an int.
+void importArray(vtkDataArray* a, const std::string& name, const std::vector<vtkIdType>& rows, AttributeSet& out) {
+  const int components = a->GetNumberOfComponents();
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  if (isIntegral(a->GetDataType()) && components == 1) {
+    Eigen::VectorXi values(n);
+    bool fits = true;
+    for (Eigen::Index r = 0; r < n && fits; ++r) {
+      const double value = a->GetComponent(rows[r], 0);
+      fits = std::abs(value) <= std::numeric_limits<int>::max();
+      values(r) = fits ? static_cast<int>(value) : 0;
+    }
+    if (fits) {
+      out.integer[name] = values;
+      return;
+    }
+  }
+  Eigen::MatrixXd values(n, components);
+  for (Eigen::Index r = 0; r < n; ++r)
+    for (int c = 0; c < components; ++c) values(r, c) = a->GetComponent(rows[r], c);
+  out.real[name] = values;
+}
+
+// Throws unless array `a` has a value for each of `count` elements (a malformed file can say otherwise).
+void checkTuples(vtkDataArray* a, vtkIdType count, const std::string& path) {
+  if (a->GetNumberOfTuples() < count)
+    throw BadInput(path, std::string("array '") + (a->GetName() ? a->GetName() : "") + "' has " +
+                             std::to_string(a->GetNumberOfTuples()) + " values for " + std::to_string(count) +
+                             " elements");
+}
+
+// Every numeric array of `data` but `skip`, restricted to `rows` (ids of `count` elements). Unnamed
+// arrays are called "array<i>".
+void importArrays(vtkDataSetAttributes* data, vtkIdType count, const std::vector<vtkIdType>& rows,
+                  AttributeSet& out, const std::string& path, vtkDataArray* skip = nullptr,
+                  const char* skipName = nullptr) {
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
+    vtkDataArray* a = data->GetArray(i);
+    if (!a || a == skip) continue;
+    const std::string name = a->GetName() && *a->GetName() ? a->GetName() : "array" + std::to_string(i);
+    if (skipName && name == skipName) continue;
+    checkTuples(a, count, path);
+    importArray(a, name, rows, out);
+  }
+}
+
+void exportArrays(const AttributeSet& attributes, vtkDataSetAttributes* data) {
+  for (const auto& [name, values] : attributes.integer) {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name.c_str());
+    a->SetNumberOfValues(values.size());
+    for (Eigen::Index r = 0; r < values.size(); ++r) a->SetValue(r, values(r));
+    data->AddArray(a);
+  }
+  for (const auto& [name, values] : attributes.real) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name.c_str());
+    a->SetNumberOfComponents(static_cast<int>(values.cols()));
+    a->SetNumberOfTuples(values.rows());
+    for (Eigen::Index r = 0; r < values.rows(); ++r)
+      for (Eigen::Index c = 0; c < values.cols(); ++c) a->SetComponent(r, static_cast<int>(c), values(r, c));
+    data->AddArray(a);
+  }
+}
+
+std::vector<vtkIdType> allRows(vtkIdType count) {
+  std::vector<vtkIdType> rows(static_cast<std::size_t>(count));
+  std::iota(rows.begin(), rows.end(), vtkIdType(0));
+  return rows;
+}
+
+MatrixX3d importPoints(vtkPointSet* data) {
+  MatrixX3d V(data->GetNumberOfPoints(), 3);
+  double p[3];
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    data->GetPoint(i, p);
+    V.row(i) << p[0], p[1], p[2];
+  }
+  return V;
+}
+
+vtkSmartPointer<vtkPoints> exportPoints(const MatrixX3d& V) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(V.rows());
+  for (Eigen::Index i = 0; i < V.rows(); ++i) points->SetPoint(i, V(i, 0), V(i, 1), V(i, 2));
+  return points;
+}
+
+// UV/FUV from per-corner uv values (#F by 6), sharing exactly equal values.
+void importCornerUv(const Eigen::MatrixXd& corners, TriMesh& mesh) {
+  std::map<std::pair<double, double>, int> index;
+  std::vector<Eigen::Vector2d> uv;
+  mesh.FUV.resize(corners.rows(), 3);
+  for (Eigen::Index f = 0; f < corners.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const std::pair<double, double> key(corners(f, 2 * c), corners(f, 2 * c + 1));
+      const auto [it, inserted] = index.try_emplace(key, static_cast<int>(uv.size()));
+      if (inserted) uv.emplace_back(key.first, key.second);
+      mesh.FUV(f, c) = it->second;
+    }
+  mesh.UV.resize(static_cast<Eigen::Index>(uv.size()), 2);
+  for (std::size_t i = 0; i < uv.size(); ++i) mesh.UV.row(static_cast<Eigen::Index>(i)) = uv[i];
+}
+
+// Fan-triangulates the polygons; `sourceCells` receives the cell id (into cell data) of each triangle.
+MatrixX3i importPolygons(vtkPolyData* data, std::vector<vtkIdType>& sourceCells, const std::string& path) {
+  const vtkIdType firstPolygonCell = data->GetNumberOfVerts() + data->GetNumberOfLines();
+  std::vector<int> faces;
+  auto it = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell()) {
+    vtkIdType size;
+    const vtkIdType* ids;
+    it->GetCurrentCell(size, ids);
+    if (size < 3) throw BadInput(path, "polygon " + std::to_string(it->GetCurrentCellId()) + " has " +
+                                           std::to_string(size) + " vertices");
+    for (vtkIdType k = 1; k + 1 < size; ++k) {
+      for (vtkIdType corner : {ids[0], ids[k], ids[k + 1]}) faces.push_back(static_cast<int>(corner));
+      sourceCells.push_back(firstPolygonCell + it->GetCurrentCellId());
+    }
+  }
+  return detail::fromRows(faces, 3);
+}
+
+TriMesh importPolyData(vtkPolyData* data, const std::string& path) {
+  if (data->GetNumberOfStrips() > 0) throw BadInput(path, "triangle strips are not supported");
+  TriMesh mesh;
+  mesh.V = importPoints(data);
+  std::vector<vtkIdType> sourceCells;
+  mesh.F = importPolygons(data, sourceCells, path);
+  const vtkIdType points = data->GetNumberOfPoints(), cells = data->GetNumberOfCells();
+  vtkDataArray* tcoords = data->GetPointData()->GetTCoords();
+  importArrays(data->GetPointData(), points, allRows(points), mesh.vertexAttributes, path, tcoords);
+  importArrays(data->GetCellData(), cells, sourceCells, mesh.faceAttributes, path, nullptr, kCornerUv);
+  vtkDataArray* cornerUv = data->GetCellData()->GetArray(kCornerUv);
+  if (cornerUv && cornerUv->GetNumberOfComponents() == 6) {
+    checkTuples(cornerUv, cells, path);
+    AttributeSet corners;
+    importArray(cornerUv, kCornerUv, sourceCells, corners);
+    importCornerUv(corners.real.at(kCornerUv), mesh);
+  } else if (tcoords && tcoords->GetNumberOfComponents() >= 2) {
+    checkTuples(tcoords, points, path);
+    mesh.UV.resize(mesh.V.rows(), 2);
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+      mesh.UV.row(i) << tcoords->GetComponent(i, 0), tcoords->GetComponent(i, 1);
+    mesh.FUV = mesh.F;
+  }
+  return mesh;
+}
+
+// The uv of each vertex (#V by 2) if every corner at a vertex has the same uv; false at a seam.
+bool perVertexUv(const TriMesh& mesh, MatrixX2d& uv) {
+  uv = MatrixX2d::Zero(mesh.V.rows(), 2);
+  std::vector<bool> set(static_cast<std::size_t>(mesh.V.rows()), false);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.F(f, c);
+      const Eigen::RowVector2d value = mesh.UV.row(mesh.FUV(f, c));
+      if (set[v] && uv.row(v) != value) return false;
+      uv.row(v) = value;
+      set[v] = true;
+    }
+  return true;
+}
+
+void exportUv(const TriMesh& mesh, vtkPolyData* data) {
+  if (mesh.FUV.rows() == 0) return;
+  MatrixX2d uv;
+  if (perVertexUv(mesh, uv)) {
+    vtkNew<vtkDoubleArray> tcoords;
+    tcoords->SetName("TCoords");
+    tcoords->SetNumberOfComponents(2);
+    tcoords->SetNumberOfTuples(uv.rows());
+    for (Eigen::Index i = 0; i < uv.rows(); ++i) tcoords->SetTuple2(i, uv(i, 0), uv(i, 1));
+    data->GetPointData()->SetTCoords(tcoords);
+    return;
+  }
+  AttributeSet corners;
+  Eigen::MatrixXd& values = corners.real[kCornerUv];
+  values.resize(mesh.F.rows(), 6);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) values.block<1, 2>(f, 2 * c) = mesh.UV.row(mesh.FUV(f, c));
+  exportArrays(corners, data->GetCellData());
+}
+
+vtkSmartPointer<vtkPolyData> exportPolyData(const TriMesh& mesh) {
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(exportPoints(mesh.V));
+  vtkNew<vtkCellArray> polys;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const vtkIdType ids[3] = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    polys->InsertNextCell(3, ids);
+  }
+  data->SetPolys(polys);
+  exportArrays(mesh.vertexAttributes, data->GetPointData());
+  exportArrays(mesh.faceAttributes, data->GetCellData());
+  exportUv(mesh, data);
+  return data;
+}
+
+// "vtkHexahedron" -> "hexahedron".
+std::string cellTypeName(int type) {
+  const char* className = vtkCellTypes::GetClassNameFromTypeId(type);
+  std::string name = className ? className : "unknown cell";
+  if (name.rfind("vtk", 0) == 0) name.erase(0, 3);
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  return name;
+}
+
+TetMesh importUnstructuredGrid(vtkUnstructuredGrid* data, const std::string& path) {
+  TetMesh mesh;
+  mesh.V = importPoints(data);
+  mesh.T.resize(data->GetNumberOfCells(), 4);
+  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
+    const int type = data->GetCellType(c);
+    if (type != VTK_TETRA)
+      throw BadInput(path, "cell " + std::to_string(c) + " is a " + cellTypeName(type) + " (VTK cell type " +
+                               std::to_string(type) + "); only tetrahedra are supported");
+    vtkIdType size;
+    const vtkIdType* ids;
+    data->GetCellPoints(c, size, ids);
+    if (size != 4)
+      throw BadInput(path, "tetrahedron " + std::to_string(c) + " has " + std::to_string(size) + " points");
+    for (int k = 0; k < 4; ++k) mesh.T(c, k) = static_cast<int>(ids[k]);
+  }
+  const vtkIdType points = data->GetNumberOfPoints(), cells = data->GetNumberOfCells();
+  importArrays(data->GetPointData(), points, allRows(points), mesh.vertexAttributes, path);
+  importArrays(data->GetCellData(), cells, allRows(cells), mesh.tetAttributes, path);
+  return mesh;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> exportUnstructuredGrid(const TetMesh& mesh) {
+  auto data = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  data->SetPoints(exportPoints(mesh.V));
+  vtkNew<vtkCellArray> cells;
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+    const vtkIdType ids[4] = {mesh.T(t, 0), mesh.T(t, 1), mesh.T(t, 2), mesh.T(t, 3)};
+    cells->InsertNextCell(4, ids);
+  }
+  data->SetCells(VTK_TETRA, cells);
+  exportArrays(mesh.vertexAttributes, data->GetPointData());
+  exportArrays(mesh.tetAttributes, data->GetCellData());
+  return data;
+}
+
+SpaceTag fieldDataTag(vtkDataObject* data) {
+  auto* tag = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(kSpaceArray));
+  if (!tag || tag->GetNumberOfValues() < 1) return SpaceTag::kNone;
+  return findSpaceTag(std::string(kSpaceArray) + "=" + tag->GetValue(0));
+}
+
+void addFieldDataTag(vtkDataObject* data) {
+  vtkNew<vtkStringArray> tag;
+  tag->SetName(kSpaceArray);
+  tag->InsertNextValue("LPS");
+  data->GetFieldData()->AddArray(tag);
+}
+
+SpaceTag commentTag(vtkStringArray* comments) {
+  for (vtkIdType i = 0; comments && i < comments->GetNumberOfValues(); ++i)
+    if (findSpaceTag(comments->GetValue(i)) == SpaceTag::kRas) return SpaceTag::kRas;
+  return SpaceTag::kNone;
+}
+
+template <class Reader>
+void readLegacy(Reader* reader, const std::string& path) {
+  reader->ReadAllScalarsOn();
+  reader->ReadAllVectorsOn();
+  reader->ReadAllNormalsOn();
+  reader->ReadAllTensorsOn();
+  reader->ReadAllColorScalarsOn();
+  reader->ReadAllTCoordsOn();
+  reader->ReadAllFieldsOn();
+  readChecked(reader, path);
+}
+
+template <class Writer>
+void configureLegacyWriter(Writer* writer, bool binary) {
+  writer->SetFileVersion(vtkDataWriter::VTK_LEGACY_READER_VERSION_4_2);
+  writer->SetHeader("Vesalius, millimetres, SPACE=LPS");
+  writer->SetFileType(binary ? VTK_BINARY : VTK_ASCII);
+}
+
+}  // namespace
+
+TriMesh readVtkSurface(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  TriMesh mesh;
+  SpaceTag tag = SpaceTag::kNone;
+  if (ext == ".ply") {
+    checkPlyStructure(path);
+    vtkNew<vtkPLYReader> reader;
+    reader->SetDuplicatePointsForFaceTexture(false);  // keep the surface connected
+    readChecked(reader.Get(), path);
+    mesh = importPolyData(reader->GetOutput(), path);
+    tag = commentTag(reader->GetComments());
+  } else if (ext == ".vtk") {
+    vtkNew<vtkPolyDataReader> reader;
+    readLegacy(reader.Get(), path);
+    mesh = importPolyData(reader->GetOutput(), path);
+    tag = findSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
+  } else if (ext == ".vtp") {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    readChecked(reader.Get(), path);
+    mesh = importPolyData(reader->GetOutput(), path);
+    tag = fieldDataTag(reader->GetOutput());
+  } else {
+    throw BadInput(path, "not a VTK surface format (.ply, .vtk, .vtp)");
+  }
+  if (tag == SpaceTag::kRas) flipRasLps(mesh.V);
+  mesh.validate(path);
+  return mesh;
+}
+
+TetMesh readVtkTetMesh(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  TetMesh mesh;
+  SpaceTag tag = SpaceTag::kNone;
+  if (ext == ".vtu") {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    readChecked(reader.Get(), path);
+    mesh = importUnstructuredGrid(reader->GetOutput(), path);
+    tag = fieldDataTag(reader->GetOutput());
+  } else if (ext == ".vtk") {
+    vtkNew<vtkUnstructuredGridReader> reader;
+    readLegacy(reader.Get(), path);
+    mesh = importUnstructuredGrid(reader->GetOutput(), path);
+    tag = findSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
+  } else {
+    throw BadInput(path, "not a VTK tet mesh format (.vtu, .vtk)");
+  }
+  if (tag == SpaceTag::kRas) flipRasLps(mesh.V);
+  mesh.validate(path);
+  orientTetsPositively(mesh.V, mesh.T);
+  return mesh;
+}
+
+void writeVtkSurface(const TriMesh& mesh, const std::string& path, bool binary) {
+  const std::string ext = fileExtension(path);
+  const vtkSmartPointer<vtkPolyData> data = exportPolyData(mesh);
+  if (ext == ".ply") {
+    // vtkPLYWriter takes the texture coordinates to be floats (and crashes otherwise).
+    if (vtkDataArray* tcoords = data->GetPointData()->GetTCoords()) {
+      vtkNew<vtkFloatArray> floats;
+      floats->DeepCopy(tcoords);
+      data->GetPointData()->SetTCoords(floats);
+    }
+    vtkNew<vtkPLYWriter> writer;
+    writer->SetInputData(data);
+    writer->SetFileType(binary ? VTK_BINARY : VTK_ASCII);
+    writer->AddComment("SPACE=LPS");
+    writeChecked(writer.Get(), path);
+  } else if (ext == ".vtk") {
+    vtkNew<vtkPolyDataWriter> writer;
+    writer->SetInputData(data);
+    configureLegacyWriter(writer.Get(), binary);
+    writeChecked(writer.Get(), path);
+  } else if (ext == ".vtp") {
+    addFieldDataTag(data);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(data);
+    if (!binary) writer->SetDataModeToAscii();
+    writeChecked(writer.Get(), path);
+  } else {
+    throw UsageError(path + ": not a VTK surface format (.ply, .vtk, .vtp)");
+  }
+}
+
+void writeVtkTetMesh(const TetMesh& mesh, const std::string& path, bool binary) {
+  const std::string ext = fileExtension(path);
+  const vtkSmartPointer<vtkUnstructuredGrid> data = exportUnstructuredGrid(mesh);
+  if (ext == ".vtu") {
+    addFieldDataTag(data);
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetInputData(data);
+    if (!binary) writer->SetDataModeToAscii();
+    writeChecked(writer.Get(), path);
+  } else if (ext == ".vtk") {
+    vtkNew<vtkUnstructuredGridWriter> writer;
+    writer->SetInputData(data);
+    configureLegacyWriter(writer.Get(), binary);
+    writeChecked(writer.Get(), path);
+  } else {
+    throw UsageError(path + ": not a VTK tet mesh format (.vtu, .vtk)");
+  }
+}
+
+}  // namespace vesalius::io

@@ -1,0 +1,44 @@
+// Triangle surfaces of labels in a label map.
+//
+// Method: the label's voxels (cropped to their bounding box and padded by one background voxel on every
+// side, so masks touching the volume edge still give closed surfaces) are contoured at 0.5 by
+// vtkDiscreteFlyingEdges3D, mapped from index to LPS world space by the map's GridGeometry
+// (origin + direction · diag(spacing) · index, so oblique and flipped directions are honoured exactly),
+// smoothed with vtkWindowedSincPolyDataFilter (Taubin, Zhang, Golub, "Optimal surface smoothing as filter
+// design", ECCV 1996; coordinates normalised, feature edges and boundary not treated specially), optionally
+// decimated to a target face count by vtkQuadricDecimation (Garland and Heckbert 1997) with volume
+// preservation, and oriented outward (the enclosed signed volume is made positive).
+// Output: V in mm (LPS), F counter-clockwise seen from outside, face attribute kLabel = the label id.
+#pragma once
+
+#include "vesalius/core/label_map.h"
+#include "vesalius/core/mesh.h"
+#include "vesalius/core/progress.h"
+
+#include <string>
+#include <vector>
+
+namespace vesalius::meshing {
+
+struct SurfaceOptions {
+  int smoothingIterations = 20;  // windowed-sinc iterations; 0 keeps the staircase surface
+  double passBand = 0.05;        // windowed-sinc pass band in (0, 2); lower smooths more
+  int targetFaces = 0;           // decimate to about this many faces; 0 keeps them all
+};
+
+// The surface of label `id`. Throws BadInput if no voxel carries `id`, UsageError on bad options.
+TriMesh labelSurface(const LabelMap& labels, Label id, const SurfaceOptions& options = {});
+
+struct LabelSurface {
+  Label id = 0;
+  std::string name;  // from the label table; the id as text if the table does not name it
+  TriMesh mesh;
+};
+
+// One surface per id in `ids`, in that order, skipping ids without voxels; with `ids` empty, every
+// label of the table (then every non-zero label present, if the table is empty). `progress` may be null
+// and gets one stage per label.
+std::vector<LabelSurface> labelSurfaces(const LabelMap& labels, const std::vector<Label>& ids,
+                                        const SurfaceOptions& options = {}, Progress* progress = nullptr);
+
+}  // namespace vesalius::meshing

@@ -1,0 +1,300 @@
+// Scans and label maps on real files: sizes, spacings, values and orientation as shipped, round trips in
+// every writable format, DICOM series, and one-line BadInput errors for broken inputs (testdata/bad/).
+#include "vesalius/io/image_io.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/io/dicom_series.h"
+#include "vesalius/io/label_table_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <numeric>
+
+namespace vesalius::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = VESALIUS_TESTDATA;
+const std::string kHeadMri = kData + "/head-mri/ch2.nii.gz";
+const std::string kCt = kData + "/ct-abdomen-pelvis/example_ct.nii.gz";
+const std::string kCtLabels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
+const std::string kCtLabelTable = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
+const std::string kObliqueCt = kData + "/oblique-ct/CT_pitch.nii.gz";
+const std::string kJpeg2000Series = kData + "/dicom/ct-series-jpeg2000";
+const std::string kThreeSlices = kData + "/dicom/ct-3slice-dcmqi/ct-3slice";
+const std::string kSingleDicom = kData + "/dicom/pydicom/CT_small.dcm";
+const std::string kBad = kData + "/bad";
+
+// An empty folder under the test output, one per test.
+fs::path freshOutputFolder(const std::string& name) {
+  const fs::path folder = fs::path(VESALIUS_TEST_OUTPUT) / name;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder;
+}
+
+std::vector<std::string> folderEntries(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+double mean(const std::vector<float>& values) {
+  return std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
+}
+
+void expectSameGeometry(const GridGeometry& a, const GridGeometry& b) {
+  EXPECT_EQ(a.size, b.size);
+  EXPECT_LT((a.spacing - b.spacing).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT((a.origin - b.origin).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_LT((a.direction - b.direction).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+TEST(ImageIo, HeadMriIsUint8At1mm) {
+  const Image image = readScan(kHeadMri);
+  EXPECT_EQ(image.geometry.size, Eigen::Vector3i(181, 217, 181));
+  EXPECT_TRUE(image.geometry.spacing.isApprox(Eigen::Vector3d(1, 1, 1), 1e-9));
+  EXPECT_EQ(image.fileType, PixelType::UInt8);
+  EXPECT_EQ(image.values.size(), std::size_t(181 * 217 * 181));
+}
+
+TEST(ImageIo, AbdomenCtIsInt32HounsfieldAt3mm) {
+  const Image image = readScan(kCt);
+  EXPECT_EQ(image.geometry.size, Eigen::Vector3i(122, 101, 112));
+  EXPECT_TRUE(image.geometry.spacing.isApprox(Eigen::Vector3d(3, 3, 3), 1e-6));
+  EXPECT_EQ(image.fileType, PixelType::Int32);
+  const auto [low, high] = std::minmax_element(image.values.begin(), image.values.end());
+  EXPECT_EQ(*low, -1207.0f);
+  EXPECT_EQ(*high, 3382.0f);
+  // The NIfTI affine is diag(3, 3, 3) in RAS: i runs to the patient's right, j anterior, k superior. ITK
+  // turns it into LPS physical space, where those axes read as direction diag(-1, -1, 1), code "RAS".
+  EXPECT_TRUE(
+      image.geometry.direction.isApprox(Eigen::Vector3d(-1, -1, 1).asDiagonal().toDenseMatrix(), 1e-9));
+  EXPECT_TRUE(image.geometry.origin.isApprox(Eigen::Vector3d(177.9563, -11.3190, 94.3018), 1e-5));
+  EXPECT_EQ(image.geometry.orientationCode(), "RAS");
+}
+
+TEST(ImageIo, DescribeScanGivesHeaderAndValueRange) {
+  const ScanInfo info = describeScan(kCt);
+  EXPECT_EQ(info.format, "NIfTI");
+  EXPECT_EQ(info.geometry.size, Eigen::Vector3i(122, 101, 112));
+  EXPECT_EQ(info.pixelType, PixelType::Int32);
+  EXPECT_EQ(info.components, 1);
+  EXPECT_EQ(info.orientation, "RAS");
+  ASSERT_TRUE(info.valueRange.has_value());
+  EXPECT_EQ(info.valueRange->minimum, -1207.0);
+  EXPECT_EQ(info.valueRange->maximum, 3382.0);
+}
+
+class ImageRoundTrip : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ImageRoundTrip, KeepsGeometryValuesAndStoredType) {
+  const fs::path folder = freshOutputFolder("round_trip" + std::string(GetParam()).replace(0, 1, "_"));
+  const std::string path = (folder / ("ct" + GetParam())).string();
+  const Image original = readScan(kCt);
+  writeScan(path, original);
+  const Image copy = readScan(path);
+  expectSameGeometry(copy.geometry, original.geometry);
+  EXPECT_EQ(copy.fileType, original.fileType);
+  EXPECT_TRUE(copy.values == original.values);
+  for (const std::string& name : folderEntries(folder))
+    EXPECT_NE(name.front(), '.') << "left behind: " << name;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryWritableFormat, ImageRoundTrip,
+                         ::testing::Values(".nii", ".nii.gz", ".nrrd", ".nhdr", ".mha", ".mhd"),
+                         [](const auto& info) {
+                           return info.param.substr(1) == "nii.gz" ? std::string("nii_gz")
+                                                                   : info.param.substr(1);
+                         });
+
+TEST(ImageIo, DetachedHeaderAndDataFileGetFinalNames) {
+  const fs::path folder = freshOutputFolder("detached_names");
+  const Image original = readScan(kCt);
+  writeScan((folder / "ct.nhdr").string(), original);
+  writeScan((folder / "ct.mhd").string(), original);
+  EXPECT_EQ(folderEntries(folder), (std::vector<std::string>{"ct.mhd", "ct.nhdr", "ct.raw.gz", "ct.zraw"}));
+}
+
+TEST(ImageIo, ObliqueDirectionSurvivesRoundTrip) {
+  const Image original = readScan(kObliqueCt);
+  const Eigen::Matrix3d& direction = original.geometry.direction;
+  EXPECT_GT((direction - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 0.1)
+      << "test scan should be tilted";
+  EXPECT_LT((direction.transpose() * direction - Eigen::Matrix3d::Identity()).norm(), 1e-5);
+  for (const std::string extension : {".nii.gz", ".nrrd", ".mha"}) {
+    const fs::path folder = freshOutputFolder("oblique");
+    const std::string path = (folder / ("pitch" + extension)).string();
+    writeScan(path, original);
+    const Image copy = readScan(path);
+    EXPECT_LT((copy.geometry.direction - direction).cwiseAbs().maxCoeff(), 1e-6) << extension;
+    EXPECT_LT((copy.geometry.origin - original.geometry.origin).cwiseAbs().maxCoeff(), 1e-4) << extension;
+    EXPECT_TRUE(copy.values == original.values) << extension;
+  }
+}
+
+TEST(ImageIo, ExistingOutputIsKeptUnlessForced) {
+  const fs::path folder = freshOutputFolder("no_clobber");
+  const std::string path = (folder / "ct.nii.gz").string();
+  Image image = readScan(kCt);
+  writeScan(path, image);
+  const auto written = fs::last_write_time(path);
+  image.values.assign(image.values.size(), 0.0f);
+  EXPECT_THROW(writeScan(path, image), UsageError);
+  EXPECT_EQ(fs::last_write_time(path), written);
+  writeScan(path, image, WriteOptions{true});
+  EXPECT_EQ(readScan(path).values.front(), 0.0f);
+}
+
+TEST(ImageIo, FailedWriteLeavesNoFile) {
+  const fs::path folder = freshOutputFolder("failed_write");
+  Image empty;  // size 0x0x0: ITK refuses to write it
+  EXPECT_THROW(writeScan((folder / "empty.nii.gz").string(), empty), BadInput);
+  EXPECT_TRUE(folderEntries(folder).empty());
+}
+
+TEST(ImageIo, UnknownOutputExtensionIsAUsageError) {
+  const fs::path folder = freshOutputFolder("bad_output_extension");
+  EXPECT_THROW(writeScan((folder / "ct.png").string(), readScan(kCt)), UsageError);
+}
+
+TEST(ImageIo, Jpeg2000DicomSeriesDecodes) {
+  const Image image = readScan(kJpeg2000Series);
+  EXPECT_EQ(image.geometry.size, Eigen::Vector3i(512, 512, 20));
+  EXPECT_NEAR(image.geometry.spacing.x(), 0.977, 1e-3);
+  EXPECT_NEAR(image.geometry.spacing.y(), 0.977, 1e-3);
+  EXPECT_NEAR(image.geometry.spacing.z(), 2.0, 1e-6);
+  EXPECT_NEAR(mean(image.values), -624.0, 1.0);
+  EXPECT_EQ(image.fileType, PixelType::Int16);
+}
+
+TEST(ImageIo, ThreeSliceSeriesIsSortedByPosition) {
+  const Image image = readScan(kThreeSlices);
+  EXPECT_EQ(image.geometry.size, Eigen::Vector3i(512, 512, 3));
+  EXPECT_GT(image.geometry.spacing.z(), 0.0);
+  ASSERT_EQ(listDicomSeries(kThreeSlices).size(), 1u);
+  EXPECT_EQ(listDicomSeries(kThreeSlices).front().sliceCount, 3);
+}
+
+TEST(ImageIo, SingleDicomFileReads) {
+  const Image image = readScan(kSingleDicom);
+  EXPECT_EQ(image.geometry.size, Eigen::Vector3i(128, 128, 1));
+  const ScanInfo info = describeScan(kSingleDicom);
+  EXPECT_EQ(info.format, "DICOM file");
+}
+
+TEST(ImageIo, SeriesUidPicksOneSeriesOfAMixedFolder) {
+  const std::string folder = kBad + "/dicom_two_series";
+  const std::vector<DicomSeries> series = listDicomSeries(folder);
+  ASSERT_EQ(series.size(), 2u);
+  for (const DicomSeries& s : series) {
+    ScanReadOptions options;
+    options.seriesUid = s.uid;
+    EXPECT_EQ(readScan(folder, options).geometry.size.z(), s.sliceCount);
+  }
+  ScanReadOptions unknown;
+  unknown.seriesUid = "1.2.3.4";
+  EXPECT_THROW(readScan(folder, unknown), UsageError);
+}
+
+TEST(ImageIo, TotalSegmentatorV1LabelMapConvertsFromFloat64) {
+  const LabelMap labelMap = readLabelMap(kCtLabels, kCtLabelTable);
+  EXPECT_EQ(labelMap.labels.geometry.size, Eigen::Vector3i(122, 101, 112));
+  const auto count = [&](Label id) {
+    return std::count(labelMap.labels.values.begin(), labelMap.labels.values.end(), id);
+  };
+  EXPECT_EQ(count(5), 41602);  // liver voxels, 27 ml each: 1.12 l
+  EXPECT_GT(count(88), 0);
+  EXPECT_GT(count(89), 0);
+  ASSERT_NE(labelMap.table.find("liver"), nullptr);
+  EXPECT_EQ(labelMap.table.find("liver")->id, 5);
+  EXPECT_EQ(labelMap.table.find(88)->name, "femur_left");
+  expectSameGeometry(labelMap.labels.geometry, readScan(kCt).geometry);
+}
+
+TEST(ImageIo, TotalSegmentatorTablesRead) {
+  const LabelTable table = readLabelTable(kCtLabelTable);
+  EXPECT_EQ(table.entries.size(), 104u);
+  EXPECT_EQ(table.resolve("liver"), 5);
+  EXPECT_EQ(readLabelTable(kData + "/ct-abdomen-pelvis/labels_tissue_types.tsv").entries.size(), 3u);
+}
+
+TEST(ImageIo, LabelMapWithoutTableNamesLabelsById) {
+  const LabelMap labelMap = readLabelMap(kCtLabels);
+  ASSERT_NE(labelMap.table.find(5), nullptr);
+  EXPECT_EQ(labelMap.table.find(5)->name, "label_5");
+  EXPECT_EQ(labelMap.table.find(5)->color, defaultLabelColor(5));
+}
+
+TEST(ImageIo, LabelMapRoundTripWritesSidecarTable) {
+  const fs::path folder = freshOutputFolder("label_round_trip");
+  const LabelMap original = readLabelMap(kCtLabels, kCtLabelTable);
+  const std::string path = (folder / "seg.nii.gz").string();
+  writeLabelMap(path, original);
+  EXPECT_EQ(labelTableSidecarPath(path), (folder / "seg.tsv").string());
+  EXPECT_EQ(describeScan(path).pixelType, PixelType::UInt8);
+  const LabelMap copy = readLabelMap(path);  // finds seg.tsv by itself
+  EXPECT_TRUE(copy.labels.values == original.labels.values);
+  EXPECT_EQ(copy.table.find(5)->name, "liver");
+  EXPECT_EQ(copy.table.entries.size(), original.table.entries.size());
+  EXPECT_THROW(writeLabelMap(path, original), UsageError);
+}
+
+TEST(ImageIo, LargeLabelIdsAreStoredAsUint16) {
+  const fs::path folder = freshOutputFolder("label_uint16");
+  LabelMap labelMap;
+  GridGeometry geometry;
+  geometry.size = Eigen::Vector3i(4, 3, 2);
+  labelMap.labels = Grid<Label>(geometry, 0);
+  labelMap.labels.at(1, 2, 1) = 300;
+  const std::string path = (folder / "big.nrrd").string();
+  writeLabelMap(path, labelMap);
+  EXPECT_EQ(describeScan(path).pixelType, PixelType::UInt16);
+  EXPECT_EQ(readLabelMap(path).labels.at(1, 2, 1), 300);
+}
+
+TEST(ImageIo, FractionalLabelValueIsBadInput) {
+  const fs::path folder = freshOutputFolder("label_fraction");
+  GridGeometry geometry;
+  geometry.size = Eigen::Vector3i(2, 2, 2);
+  Image image(geometry, 1.0f);
+  image.at(1, 0, 1) = 2.5f;
+  image.fileType = PixelType::Float32;
+  const std::string path = (folder / "fraction.mha").string();
+  writeScan(path, image);
+  try {
+    readLabelMap(path);
+    ADD_FAILURE() << "a label of 2.5 was accepted";
+  } catch (const BadInput& error) {
+    EXPECT_NE(std::string(error.what()).find("voxel (1, 0, 1) holds 2.5"), std::string::npos) << error.what();
+  }
+}
+
+// Each broken input throws BadInput with a one-line message that names it.
+void expectOneLineBadInput(const std::string& path, const std::string& fragment) {
+  try {
+    readScan(path);
+    ADD_FAILURE() << "no error reading " << path;
+  } catch (const BadInput& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+  }
+}
+
+TEST(ImageIo, BrokenInputsAreOneLineBadInput) {
+  expectOneLineBadInput(kBad + "/scan_truncated.nii.gz", "truncated");
+  expectOneLineBadInput(kBad + "/scan_zero_spacing.nii", "spacing");
+  expectOneLineBadInput(kBad + "/dicom_two_series", "2 DICOM series");
+  expectOneLineBadInput(kBad + "/scan_missing.nii.gz", "no such file");
+  expectOneLineBadInput(kBad + "/scan_unknown_extension.xyz", "unknown scan format '.xyz'");
+}
+
+}  // namespace
+}  // namespace vesalius::io
