@@ -36,5 +36,5 @@ function(vesalius_test)
     VESALIUS_TESTDATA="${PROJECT_SOURCE_DIR}/testdata"
     VESALIUS_TEST_OUTPUT="${PROJECT_BINARY_DIR}/test-output/${T_NAME}")
   vesalius_target_flags(${T_NAME})
-  gtest_discover_tests(${T_NAME} PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(${T_NAME} NO_PRETTY_VALUES PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -74,11 +74,11 @@ void printMarkers(const InfoOptions& o) {
 }
 
 void printMesh(const InfoOptions& o, io::MeshKind kind) {
-  if (kind == io::MeshKind::kSurface) {
-    std::cout << o.file << ": surface mesh\n" << io::describe(io::summarize(io::readTriMesh(o.file)));
-  } else {
-    std::cout << o.file << ": tetrahedral mesh\n" << io::describe(io::summarize(io::readTetMesh(o.file)));
-  }
+  // Read before printing anything, so a bad file gives its one error line and nothing else.
+  const std::string text = kind == io::MeshKind::kSurface ? io::describe(io::summarize(io::readTriMesh(o.file)))
+                                                          : io::describe(io::summarize(io::readTetMesh(o.file)));
+  std::cout << o.file << (kind == io::MeshKind::kSurface ? ": surface mesh\n" : ": tetrahedral mesh\n") << text
+            << '\n';
 }
 
 void printMotion(const InfoOptions& o) {

@@ -4,7 +4,7 @@
 # the seeds in the source tree are read, never written. A crash fails the test and leaves the input
 # in the build tree as crash-*.
 set -euo pipefail
-fuzzer=$1 work=$2 seeds=$3 seconds=$4
+fuzzer=$(realpath "$1") work=$(realpath -m "$2") seeds=$(realpath "$3") seconds=$4
 mkdir -p "$work"
 cd "$(dirname "$work")"
 exec "$fuzzer" "$work" "$seeds" -max_total_time="$seconds" -seed=1 -max_len=65536 -timeout=10 \

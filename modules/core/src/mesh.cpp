@@ -2,8 +2,6 @@
 
 #include "vesalius/core/error.h"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <map>

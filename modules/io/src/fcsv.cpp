@@ -23,7 +23,8 @@ std::string printable(std::string_view text, std::size_t maxLength) {
   return text.size() > maxLength ? out + "..." : out;
 }
 
-std::vector<std::string> splitCsvRow(std::string_view line, char separator) {
+std::vector<std::string> splitCsvRow(std::string_view line, const LineReader& reader, char separator) {
+  if (line.find('\r') != std::string_view::npos) reader.fail("carriage return inside a line");
   enum class State { Unquoted, Quoted, QuoteInQuoted } state = State::Unquoted;
   std::vector<std::string> fields;
   std::string field;
@@ -89,7 +90,7 @@ double coordinateSign(std::string_view value, const LineReader& reader) {
 }
 
 void checkColumns(std::string_view value, const LineReader& reader) {
-  const std::vector<std::string> names = splitCsvRow(value);
+  const std::vector<std::string> names = splitCsvRow(value, reader);
   bool standard = names.size() >= kColumnCount;
   for (std::size_t i = 0; standard && i < kColumnCount; ++i) standard = trim(names[i]) == kColumns[i];
   if (!standard)
@@ -134,7 +135,7 @@ MarkerStatus statusField(const std::vector<std::string>& fields, const LineReade
 }
 
 Marker readRow(std::string_view line, const FcsvHeader& header, MarkerKind kind, const LineReader& reader) {
-  const std::vector<std::string> f = splitCsvRow(line);
+  const std::vector<std::string> f = splitCsvRow(line, reader);
   if (f.size() < 4) reader.fail("expected id,x,y,z,... but found " + std::to_string(f.size()) + " fields");
   if (f.size() > 16)
     reader.fail(std::to_string(f.size()) + " fields, at most 16 expected (an unquoted comma in a label?)");

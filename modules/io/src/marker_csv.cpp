@@ -36,7 +36,7 @@ bool findTriple(const std::vector<std::string>& names, const char* const axes[3]
 
 CsvColumns readHeader(std::string_view line, const LineReader& reader) {
   std::vector<std::string> names;
-  for (const std::string& f : splitCsvRow(line)) names.push_back(lowerTrimmed(f));
+  for (const std::string& f : splitCsvRow(line, reader)) names.push_back(lowerTrimmed(f));
   for (std::size_t i = 0; i < names.size(); ++i)
     if (!names[i].empty() && std::count(names.begin(), names.end(), names[i]) > 1)
       reader.fail("column '" + printable(names[i]) + "' appears twice");
@@ -74,7 +74,7 @@ MarkerStatus statusValue(std::string_view v, const LineReader& reader) {
 }
 
 Marker readRow(std::string_view line, const CsvColumns& c, MarkerKind defaultKind, const LineReader& reader) {
-  const std::vector<std::string> f = splitCsvRow(line);
+  const std::vector<std::string> f = splitCsvRow(line, reader);
   if (f.size() < c.required)
     reader.fail("expected at least " + std::to_string(c.required) + " fields, found " + std::to_string(f.size()));
   Marker m;

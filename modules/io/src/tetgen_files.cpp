@@ -183,7 +183,8 @@ std::string formatNodes(const TetMesh& mesh) {
                     header({mesh.V.rows(), 3, attributes.cols(), hasMarkers ? 1 : 0});
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
     Eigen::RowVectorXd reals(3 + attributes.cols());
-    reals << mesh.V.row(i), attributes.row(i);
+    reals.head<3>() = mesh.V.row(i);
+    if (attributes.cols() > 0) reals.tail(attributes.cols()) = attributes.row(i);  // row() of 0 columns is UB
     appendRecord(out, i, reals, hasMarkers ? std::vector<long long>{markers(i)} : std::vector<long long>{});
   }
   return out;

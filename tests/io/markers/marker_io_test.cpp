@@ -294,7 +294,8 @@ TEST(MarkerIo, KeepsExistingOutputsUnlessForced) {
 }
 
 TEST(MarkerIo, CsvFieldsSplitAsSlicerSplitsThem) {
-  const std::vector<std::string> f = splitCsvRow("a,\"b, c\",\"d \"\"e\"\"\",,x\"y");
+  const LineReader reader("", "row.csv");
+  const std::vector<std::string> f = splitCsvRow("a,\"b, c\",\"d \"\"e\"\"\",,x\"y", reader);
   ASSERT_EQ(f.size(), 5u);
   EXPECT_EQ(f[1], "b, c");
   EXPECT_EQ(f[2], "d \"e\"");
@@ -302,6 +303,7 @@ TEST(MarkerIo, CsvFieldsSplitAsSlicerSplitsThem) {
   EXPECT_EQ(f[4], "x\"y");
   EXPECT_EQ(quoteCsvField("d \"e\", f"), "\"d \"\"e\"\", f\"");
   EXPECT_THROW(quoteCsvField("two\nlines"), UsageError);
+  EXPECT_THROW(splitCsvRow("a\rb,c", reader), BadInput);  // found by fuzz_fcsv
 }
 
 void expectBadInput(const std::string& path, const std::string& fragment) {

@@ -7,6 +7,7 @@
 #include "vesalius/core/attributes.h"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <string>
 

@@ -17,6 +17,7 @@
 
 #include "vesalius/core/grid.h"
 #include "vesalius/core/markers.h"
+#include "vesalius/io/text_file.h"
 
 #include <string>
 #include <string_view>
@@ -105,8 +106,9 @@ std::string formatShortest(double value);
 std::string printable(std::string_view text, std::size_t maxLength = 60);
 
 // Splits one line into fields as 3D Slicer's CSV codec does: a field that starts with '"' is quoted,
-// "" inside it is one '"', and the separator inside quotes is kept.
-std::vector<std::string> splitCsvRow(std::string_view line, char separator = ',');
+// "" inside it is one '"', and the separator inside quotes is kept. A carriage return inside the line
+// is refused through `reader` (no writer could put it back).
+std::vector<std::string> splitCsvRow(std::string_view line, const LineReader& reader, char separator = ',');
 // Quotes a field if it holds the separator or '"' (doubling the quotes). Throws UsageError if it holds a
 // line break, which no line-based reader of these formats can read back.
 std::string quoteCsvField(const std::string& field, char separator = ',');

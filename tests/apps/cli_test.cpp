@@ -1,0 +1,159 @@
+// The `vesalius` program end to end: what `info` says about the real test files, exit codes, one-line
+// errors for bad input with no partial output, marker conversion, and --help on every subcommand.
+#include "run_command.h"
+
+#include "vesalius/io/marker_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace vesalius::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = VESALIUS_TESTDATA;
+
+std::string outputDir() {
+  const std::string dir = std::string(VESALIUS_TEST_OUTPUT);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void expectContains(const std::string& text, const std::string& fragment) {
+  EXPECT_NE(text.find(fragment), std::string::npos) << "missing '" << fragment << "' in:\n" << text;
+}
+
+struct InfoCase {
+  std::string name, file;
+  std::vector<std::string> facts;
+};
+
+class Info : public ::testing::TestWithParam<InfoCase> {};
+
+TEST_P(Info, PrintsTheFacts) {
+  const InfoCase& c = GetParam();
+  const CommandResult r = runVesalius({"info", kData + "/" + c.file});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const std::string& fact : c.facts) expectContains(r.out, fact);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TestData, Info,
+    ::testing::Values(
+        InfoCase{"head_mri", "head-mri/ch2.nii.gz",
+                 {"scan (NIfTI)", "181 x 217 x 181 voxels", "1 x 1 x 1 mm", "uint8", "values       0 .. 254"}},
+        InfoCase{"ct", "ct-abdomen-pelvis/example_ct.nii.gz",
+                 {"122 x 101 x 112 voxels", "3 x 3 x 3 mm", "orientation  RAS", "int32", "-1207 .. 3382"}},
+        InfoCase{"dicom_series", "dicom/ct-series-jpeg2000", {"DICOM series", "512 x 512 x 20 voxels", "int16"}},
+        InfoCase{"oblique", "oblique-ct/CT_pitch.nii.gz", {"175 x 248 x 58 voxels", "uint8"}},
+        InfoCase{"liver_tets", "liver/liver.msh", {"tetrahedral mesh", "181", "596"}},
+        InfoCase{"liver_surface", "liver/liver-smooth.obj", {"surface mesh", "2194", "4384", "closed"}},
+        InfoCase{"muscle", "muscles/VHF_Left_Muscle_GluteusMedius_smooth.stl", {"surface mesh", "30072"}},
+        InfoCase{"pelvis_vtp", "skeleton-opensim/Geometry/r_pelvis.vtp", {"surface mesh", "122"}},
+        InfoCase{"markers", "markers/slicer_v1.0.3_lps.mrk.json", {"markers", "landmarks", "undefined"}},
+        InfoCase{"fcsv", "markers/fiducials_v4.11_lps_16col.fcsv", {"markers", "LPS"}},
+        InfoCase{"cmu_motion", "motion/01_01.bvh", {"motion (BVH)", "joints       31", "frames       2752 at 120"}},
+        InfoCase{"opensim", "skeleton-opensim/Rajagopal2016.osim",
+                 {"OpenSim model", "bodies       22", "muscles      80 with 288 path points"}},
+        InfoCase{"makehuman", "body/default.mhskel", {"MakeHuman skeleton", "bones        163"}},
+        InfoCase{"label_table", "ct-abdomen-pelvis/labels_total_v1.tsv", {"label table, 104 labels", "liver"}}),
+    [](const auto& info) { return info.param.name; });
+
+// The bad inputs: one line naming the file, exit code 3.
+struct BadCase {
+  std::string name, file;
+};
+
+class BadInfo : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInfo, OneLineNamingTheFileAndExit3) {
+  const std::string path = kData + "/bad/" + GetParam().file;
+  const CommandResult r = runVesalius({"info", path});
+  EXPECT_EQ(r.exitCode, 3) << r.err;
+  expectContains(r.err, path);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(TestData, BadInfo,
+                         ::testing::Values(BadCase{"truncated_nifti", "scan_truncated.nii.gz"},
+                                           BadCase{"zero_spacing", "scan_zero_spacing.nii"},
+                                           BadCase{"stl_nan", "mesh_nan_vertex.stl"},
+                                           BadCase{"stl_nan_binary", "mesh_nan_vertex_binary.stl"},
+                                           BadCase{"mrk_json_without_schema", "markers_no_schema.mrk.json"},
+                                           BadCase{"bvh_missing_channel", "bvh_missing_channel.bvh"}),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(Cli, DicomFolderWithTwoSeriesListsThem) {
+  const CommandResult r = runVesalius({"info", kData + "/bad/dicom_two_series"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectContains(r.out, "2 series");
+  const CommandResult segment = runVesalius(
+      {"segment", "--scan", kData + "/bad/dicom_two_series", "--out", outputDir() + "/two.nii.gz", "--force"});
+  EXPECT_EQ(segment.exitCode, 3);
+  expectContains(segment.err, "series");
+  EXPECT_FALSE(fs::exists(outputDir() + "/two.nii.gz"));
+}
+
+TEST(Cli, BadScanLeavesNoOutput) {
+  const std::string out = outputDir() + "/truncated-labels.nii.gz";
+  fs::remove(out);
+  const CommandResult r =
+      runVesalius({"segment", "--scan", kData + "/bad/scan_truncated.nii.gz", "--modality", "ct", "--out", out});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(outputDir() + "/truncated-labels.tsv"));
+}
+
+TEST(Cli, BadMarkersLeaveNoOutput) {
+  const std::string out = outputDir() + "/no-schema.fcsv";
+  fs::remove(out);
+  const CommandResult r =
+      runVesalius({"markers", "convert", kData + "/bad/markers_no_schema.mrk.json", "--out", out});
+  EXPECT_EQ(r.exitCode, 3);
+  expectContains(r.err, "markers_no_schema.mrk.json");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
+  const std::string in = kData + "/markers/fiducials_v4.10_ras_14col.fcsv";
+  const std::string out = outputDir() + "/converted.mrk.json";
+  fs::remove(out);
+  ASSERT_EQ(runVesalius({"markers", "convert", in, "--out", out}).exitCode, 0);
+  const MarkerSet original = io::readMarkers(in), converted = io::readMarkers(out);
+  ASSERT_EQ(original.markers.size(), converted.markers.size());
+  for (std::size_t i = 0; i < original.markers.size(); ++i) {
+    EXPECT_EQ(original.markers[i].label, converted.markers[i].label);
+    EXPECT_LT((original.markers[i].position - converted.markers[i].position).norm(), 1e-9);
+  }
+  const CommandResult again = runVesalius({"markers", "convert", in, "--out", out});
+  EXPECT_EQ(again.exitCode, 2);
+  expectContains(again.err, "--force");
+  EXPECT_EQ(runVesalius({"markers", "convert", in, "--out", out, "--force"}).exitCode, 0);
+}
+
+TEST(Cli, UsageErrorsExit2) {
+  EXPECT_EQ(runVesalius({}).exitCode, 2);
+  EXPECT_EQ(runVesalius({"frobnicate"}).exitCode, 2);
+  EXPECT_EQ(runVesalius({"segment", "--scan"}).exitCode, 2);
+  EXPECT_EQ(runVesalius({"info", kData + "/bad/scan_unknown_extension.xyz"}).exitCode, 3);
+}
+
+TEST(Cli, EveryCommandHasHelpWithAnExample) {
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"info"}, {"segment"}, {"surface"}, {"markers", "convert"}, {"demo"}}) {
+    std::vector<std::string> args = command;
+    args.push_back("--help");
+    const CommandResult r = runVesalius(args);
+    EXPECT_EQ(r.exitCode, 0) << command[0];
+    expectContains(r.out, "Example");
+    expectContains(r.out, "vesalius " + command[0]);
+  }
+}
+
+}  // namespace
+}  // namespace vesalius::test
