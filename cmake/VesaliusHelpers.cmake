@@ -32,6 +32,7 @@ function(vesalius_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
   target_compile_definitions(${T_NAME} PRIVATE
     VESALIUS_TESTDATA="${PROJECT_SOURCE_DIR}/testdata"
     VESALIUS_TEST_OUTPUT="${PROJECT_BINARY_DIR}/test-output/${T_NAME}")

@@ -31,11 +31,20 @@ void writeSurfaces(const DemoOptions& o, const LabelMap& labels, io::Report& rep
     auto timer = report.time("surfaces");
     surfaces = meshing::labelSurfaces(labels, {}, meshing::SurfaceOptions{}, &progress);
   }
+  const double voxelMl = labels.labels.geometry.spacing.prod() / 1000.0;
   for (const meshing::LabelSurface& s : surfaces) {
     const std::string path = in(o, s.name + ".vtp");
     io::writeTriMesh(path, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
     report.output(s.name, path);
-    std::cout << "  " << path << "  (" << s.mesh.F.rows() << " triangles)\n";
+    const io::TriMeshSummary summary = io::summarize(s.mesh);
+    const double labelMl = segmentation::countVoxels(segmentation::maskOf(labels.labels, s.id)) * voxelMl;
+    report.metric(s.name, {{"triangles", summary.triangles},
+                           {"closed", summary.closed},
+                           {"components", summary.components},
+                           {"surface_volume_ml", summary.volume.value_or(0.0) / 1000.0},
+                           {"voxel_volume_ml", labelMl}});
+    std::cout << "  " << path << "  (" << s.mesh.F.rows() << " triangles, "
+              << (summary.closed ? "closed" : "open") << ", " << labelMl << " ml)\n";
   }
 }
 
@@ -63,6 +72,7 @@ void runDemo(DemoOptions o) {
   report.output("png", in(o, "labels.png"));
   std::cout << "  " << in(o, "labels.png") << "  (labels over axial, coronal and sagittal slices)\n";
   report.write(in(o, "report.json"), o.common.writeOptions());
+  o.common.finish(report);
   std::cout << "  " << in(o, "report.json") << "  (inputs, stage times)\n";
 }
 

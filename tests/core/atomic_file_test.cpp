@@ -100,6 +100,16 @@ TEST_F(AtomicFile, AFailedForcedWriteKeepsTheOldOutput) {
   EXPECT_EQ(listing(), std::vector<std::string>{"points.mrk.json"});
 }
 
+TEST_F(AtomicFile, NeverReplacesAFolderOrDevice) {
+  fs::create_directories(dir / "labels.nii.gz");
+  bool called = false;
+  EXPECT_THROW(writeAtomically((dir / "labels.nii.gz").string(), {true}, [&](const std::string&) { called = true; }),
+               UsageError);
+  EXPECT_THROW(writeAtomically("/dev/null", {true}, [&](const std::string&) { called = true; }), UsageError);
+  EXPECT_FALSE(called);
+  EXPECT_TRUE(fs::is_directory(dir / "labels.nii.gz"));
+}
+
 TEST(AtomicFileExtension, KnowsDoubleExtensionsAndLowersCase) {
   EXPECT_EQ(fileExtension("a/b.nii.gz"), ".nii.gz");
   EXPECT_EQ(fileExtension("markers.mrk.json"), ".mrk.json");

@@ -28,9 +28,11 @@ void writeAtomically(const std::string& path, const WriteOptions& options,
                      const std::function<void(const std::string& temporaryPath)>& write) {
   const fs::path target(path);
   std::error_code ec;
-  if (fs::exists(target, ec) && !options.force)
-    throw UsageError(path + ": exists; pass --force to replace it");
-  if (fs::is_directory(target, ec)) throw UsageError(path + ": is a directory");
+  if (fs::exists(target, ec)) {
+    // Renaming over a folder, device or pipe (say /dev/null) would destroy it, --force or not.
+    if (!fs::is_regular_file(target, ec)) throw UsageError(path + ": exists and is not a regular file");
+    if (!options.force) throw UsageError(path + ": exists; pass --force to replace it");
+  }
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec)) throw UsageError(path + ": folder " + parent.string() + " does not exist");
 

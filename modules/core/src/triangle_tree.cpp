@@ -1,8 +1,7 @@
 // Closest point on a triangle mesh.
 //
-// The tree is a bounding-volume hierarchy split at the median centroid along the widest axis, so its
-// depth is at most ceil(log2(#F)). A query walks it depth-first, nearer child first, and skips every
-// box farther away than the best triangle found so far. The triangle test is Ericson, "Real-Time
+// A query walks the triangles' BoxTree nearest-first and skips every box farther away than the best
+// triangle found so far. The triangle test is Ericson, "Real-Time
 // Collision Detection" (2005), §5.1.5, extended to return barycentric weights.
 #include "vesalius/core/triangle_tree.h"
 
@@ -20,11 +19,6 @@
 
 namespace vesalius {
 namespace {
-
-constexpr int kLeafSize = 4;
-// Median splits halve every range, so the depth is at most 31 and the traversal stack, which holds
-// at most depth + 1 entries, fits here.
-constexpr int kStackSize = 64;
 
 Eigen::Vector3d closestOnSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                  const Eigen::Vector3d& b, double& t) {
@@ -56,11 +50,17 @@ Eigen::Vector3d closestOnDegenerate(const Eigen::Vector3d& p, const Eigen::Vecto
   return qca;
 }
 
-void checkMesh(const MatrixX3d& V, const MatrixX3i& F) {
+std::vector<Eigen::AlignedBox3d> triangleBoxes(const MatrixX3d& V, const MatrixX3i& F) {
   if (F.rows() == 0) throw BadInput("", "closest-point tree: the mesh has no triangles");
   if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
     throw BadInput("", "closest-point tree: a triangle index is outside the " +
                            std::to_string(V.rows()) + " vertices");
+  std::vector<Eigen::AlignedBox3d> boxes(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    boxes[f].setEmpty();
+    for (int k = 0; k < 3; ++k) boxes[f].extend(V.row(F(f, k)).transpose());
+  }
+  return boxes;
 }
 
 }  // namespace
@@ -111,80 +111,19 @@ Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Ve
   return a + v * ab + w * ac;
 }
 
-TriangleTree::TriangleTree(const MatrixX3d& V, const MatrixX3i& F) : V_(V), F_(F) {
-  checkMesh(V_, F_);
-  const int n = int(F_.rows());
-  std::vector<Eigen::AlignedBox3d> boxes(n);
-  std::vector<Eigen::Vector3d> centroids(n);
-  for (int f = 0; f < n; ++f) {
-    boxes[f].setEmpty();
-    for (int k = 0; k < 3; ++k) boxes[f].extend(V_.row(F_(f, k)).transpose());
-    centroids[f] = boxes[f].center();
-  }
-  order_.resize(n);
-  std::iota(order_.begin(), order_.end(), 0);
-  nodes_.reserve(2 * (n / kLeafSize + 1));
-  build(0, n, boxes, centroids);
-}
-
-int TriangleTree::build(int begin, int end, std::vector<Eigen::AlignedBox3d>& boxes,
-                        std::vector<Eigen::Vector3d>& centroids) {
-  const int index = int(nodes_.size());
-  nodes_.emplace_back();
-  Eigen::AlignedBox3d box, centroidBox;
-  box.setEmpty();
-  centroidBox.setEmpty();
-  for (int i = begin; i < end; ++i) {
-    box.extend(boxes[order_[i]]);
-    centroidBox.extend(centroids[order_[i]]);
-  }
-  nodes_[index].box = box;
-  if (end - begin <= kLeafSize) {
-    nodes_[index].begin = begin;
-    nodes_[index].end = end;
-    return index;
-  }
-  int axis;
-  centroidBox.sizes().maxCoeff(&axis);
-  const int mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](int x, int y) { return centroids[x][axis] < centroids[y][axis]; });
-  const int left = build(begin, mid, boxes, centroids);
-  const int right = build(mid, end, boxes, centroids);
-  nodes_[index].left = left;
-  nodes_[index].right = right;
-  return index;
-}
+TriangleTree::TriangleTree(const MatrixX3d& V, const MatrixX3i& F)
+    : V_(V), F_(F), tree_(triangleBoxes(V, F)) {}
 
 ClosestPoint TriangleTree::closest(const Eigen::Vector3d& p) const {
   ClosestPoint best;
   best.squaredDistance = std::numeric_limits<double>::infinity();
-  std::array<std::pair<int, double>, kStackSize> stack;
-  int top = 0;
-  stack[top++] = {0, nodes_[0].box.squaredExteriorDistance(p)};
-  while (top > 0) {
-    const auto [index, boxDistance] = stack[--top];
-    if (boxDistance >= best.squaredDistance) continue;
-    const Node& node = nodes_[index];
-    if (node.left < 0) {
-      for (int i = node.begin; i < node.end; ++i) {
-        const int f = order_[i];
-        Eigen::Vector3d bary;
-        const Eigen::Vector3d q = closestPointOnTriangle(
-            p, V_.row(F_(f, 0)).transpose(), V_.row(F_(f, 1)).transpose(),
-            V_.row(F_(f, 2)).transpose(), bary);
-        const double d = (p - q).squaredNorm();
-        if (d < best.squaredDistance) best = {q, f, bary, d};
-      }
-      continue;
-    }
-    std::pair<int, double> near{node.left, nodes_[node.left].box.squaredExteriorDistance(p)};
-    std::pair<int, double> far{node.right, nodes_[node.right].box.squaredExteriorDistance(p)};
-    if (far.second < near.second) std::swap(near, far);
-    // Pushed last, so popped first: the nearer child tightens the bound before the farther is tried.
-    stack[top++] = far;
-    stack[top++] = near;
-  }
+  tree_.nearestFirst(p, best.squaredDistance, [&](int f) {
+    Eigen::Vector3d bary;
+    const Eigen::Vector3d q = closestPointOnTriangle(p, V_.row(F_(f, 0)).transpose(), V_.row(F_(f, 1)).transpose(),
+                                                     V_.row(F_(f, 2)).transpose(), bary);
+    const double d = (p - q).squaredNorm();
+    if (d < best.squaredDistance) best = {q, f, bary, d};
+  });
   return best;
 }
 

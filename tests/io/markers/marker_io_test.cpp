@@ -5,6 +5,8 @@
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/text_file.h"
 
+#include "expect_bad_input.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -307,17 +309,8 @@ TEST(MarkerIo, CsvFieldsSplitAsSlicerSplitsThem) {
 }
 
 void expectBadInput(const std::string& path, const std::string& fragment) {
-  SCOPED_TRACE(path);
   const GridGeometry scan = annotScan();
-  try {
-    readMarkers(path, {MarkerKind::Landmark, &scan});
-    ADD_FAILURE() << "no exception";
-  } catch (const BadInput& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-  }
+  test::expectOneLineBadInput(path, fragment, [&] { readMarkers(path, {MarkerKind::Landmark, &scan}); });
 }
 
 TEST(MarkerIo, BadFilesAreOneLineBadInput) {

@@ -3,6 +3,8 @@
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_io.h"
 
+#include "expect_bad_input.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -53,18 +55,12 @@ class BadMeshFile : public testing::TestWithParam<BadCase> {};
 TEST_P(BadMeshFile, ThrowsOneLineNamingTheFile) {
   const BadCase& c = GetParam();
   const std::string path = badFile(c.file);
-  try {
+  test::expectOneLineBadInput(path, c.expected, [&] {
     if (c.tetMesh)
       readTetMesh(path);
     else
       readTriMesh(path);
-    FAIL() << path << " was accepted";
-  } catch (const BadInput& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
-    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
+  });
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, BadMeshFile, testing::ValuesIn(kCases),

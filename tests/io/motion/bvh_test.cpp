@@ -2,6 +2,8 @@
 #include "vesalius/core/error.h"
 #include "vesalius/io/motion_io.h"
 
+#include "expect_bad_input.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -117,16 +119,7 @@ TEST(Bvh, WriterOrdersJointsDepthFirstAndKeepsTheirValues) {
 
 void expectBadInput(const std::string& file, const std::string& fragment) {
   const std::string path = kData + "/bad/" + file;
-  SCOPED_TRACE(path);
-  try {
-    readBvh(path);
-    ADD_FAILURE() << "no exception";
-  } catch (const BadInput& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-  }
+  test::expectOneLineBadInput(path, fragment, [&] { readBvh(path); });
 }
 
 TEST(Bvh, BadFilesAreOneLineBadInputWithLineNumbers) {

@@ -4,6 +4,7 @@
 // tet meshes (seed 001 §3.4, seed 002 §4.3).
 #pragma once
 
+#include "vesalius/core/box_tree.h"
 #include "vesalius/core/mesh.h"
 
 #include <Eigen/Core>
@@ -36,15 +37,9 @@ class TetLocator {
   Eigen::Vector4d barycentric(int t, const Eigen::Vector3d& p) const;
 
  private:
-  struct Node {
-    Eigen::AlignedBox3d box;
-    int left = -1, right = -1;
-    int begin = 0, end = 0;
-  };
   MatrixX3d V_;
   MatrixX4i T_;
-  std::vector<int> order_;
-  std::vector<Node> nodes_;
+  BoxTree tree_;
 };
 
 }  // namespace vesalius

@@ -4,6 +4,7 @@
 // mesh comparisons everywhere later.
 #pragma once
 
+#include "vesalius/core/box_tree.h"
 #include "vesalius/core/mesh.h"
 
 #include <Eigen/Core>
@@ -30,18 +31,9 @@ class TriangleTree {
   std::vector<ClosestPoint> closest(const MatrixX3d& P) const;
 
  private:
-  struct Node {
-    Eigen::AlignedBox3d box;
-    int left = -1, right = -1;  // children, or -1 for a leaf
-    int begin = 0, end = 0;     // range in order_ for a leaf
-  };
   MatrixX3d V_;
   MatrixX3i F_;
-  std::vector<int> order_;
-  std::vector<Node> nodes_;
-
-  int build(int begin, int end, std::vector<Eigen::AlignedBox3d>& boxes,
-            std::vector<Eigen::Vector3d>& centroids);
+  BoxTree tree_;
 };
 
 // Closest point of triangle (a, b, c) to p, with its barycentric weights (Ericson, RTCD §5.1.5).
