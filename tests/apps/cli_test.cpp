@@ -2,12 +2,17 @@
 // errors for bad input with no partial output, marker conversion, and --help on every subcommand.
 #include "run_command.h"
 
+#include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
+#include "vesalius/io/mesh_io.h"
+
+#include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 
 namespace vesalius::test {
 namespace {
@@ -134,6 +139,55 @@ TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
   EXPECT_EQ(again.exitCode, 2);
   expectContains(again.err, "--force");
   EXPECT_EQ(runVesalius({"markers", "convert", in, "--out", out, "--force"}).exitCode, 0);
+}
+
+// The main job on the shipped CT: every output exists, every surface is closed, and the surfaces enclose
+// the volume of their labels (windowed-sinc smoothing shrinks thin structures, so bone, a thin shell of
+// cortex around marrow, loses more than the thick fat layer).
+TEST(Cli, DemoWritesClosedSurfacesOfEveryTissue) {
+  const std::string out = outputDir() + "/demo";
+  const CommandResult r = runVesalius({"demo", "--out", out, "--force", "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* file : {"labels.nii.gz", "labels.tsv", "labels.png", "report.json", "bone.vtp", "skin.vtp",
+                           "subcutaneous_fat.vtp", "fat.vtp", "soft_tissue.vtp"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
+    expectContains(r.out, file);
+  }
+  const LabelMap labels = io::readLabelMap(out + "/labels.nii.gz");
+  EXPECT_EQ(labels.table.entries.size(), 5u);
+  EXPECT_EQ(labels.labels.geometry.size, Eigen::Vector3i(122, 101, 112));
+
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const auto& [name, m] : report["metrics"].items()) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(m["closed"].get<bool>());
+    EXPECT_GT(m["triangles"].get<long>(), 1000);
+  }
+  const auto relativeError = [&](const char* name) {
+    const auto& m = report["metrics"][name];
+    return std::abs(m["surface_volume_ml"].get<double>() / m["voxel_volume_ml"].get<double>() - 1.0);
+  };
+  EXPECT_LT(relativeError("subcutaneous_fat"), 0.02);
+  EXPECT_LT(relativeError("soft_tissue"), 0.05);
+  EXPECT_LT(relativeError("bone"), 0.10);
+}
+
+TEST(Cli, SegmentThenSurfaceOneLabelByName) {
+  const std::string labels = outputDir() + "/ct-labels.nii.gz", bone = outputDir() + "/bone.stl";
+  ASSERT_EQ(runVesalius({"segment", "--scan", kData + "/ct-abdomen-pelvis/example_ct_sm.nii.gz", "--modality", "ct",
+                         "--out", labels, "--force", "--progress", "none"})
+                .exitCode,
+            0);
+  EXPECT_TRUE(fs::exists(outputDir() + "/ct-labels.png"));
+  const CommandResult r =
+      runVesalius({"surface", "--labels", labels, "--label", "bone", "--out", bone, "--force", "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::TriMeshSummary summary = io::summarize(io::readTriMesh(bone));
+  EXPECT_TRUE(summary.closed);
+  ASSERT_TRUE(summary.volume.has_value());
+  EXPECT_GT(*summary.volume, 0.0);
+  EXPECT_EQ(runVesalius({"surface", "--labels", labels, "--label", "liver", "--out", bone, "--force"}).exitCode, 2);
 }
 
 TEST(Cli, UsageErrorsExit2) {
