@@ -11,8 +11,8 @@ Mask skinShell(const Mask& body, double thicknessMm);
 // Bone inside the body (stage 3).
 Mask ctBone(const Image& ct, const Mask& body, const CtTissueOptions& options);
 
-// Fat outside the muscle-wall envelope and connected through fat to the skin (stage 4). `fat`: fat-range
-// voxels of the body outside skin and bone; `interior`: body voxels that are neither skin nor fat.
-Mask subcutaneousFat(const Mask& fat, const Mask& skin, const Mask& interior, double closingMm);
+// Fat outside the muscle-wall envelope (stage 4). `fat`: fat-range voxels of the body outside skin and
+// bone; `interior`: body voxels that are neither skin nor fat.
+Mask subcutaneousFat(const Mask& body, const Mask& fat, const Mask& interior, const CtTissueOptions& o);
 
 }  // namespace vesalius::segmentation::detail

@@ -4,16 +4,16 @@
 
 namespace vesalius::segmentation::detail {
 
-Mask subcutaneousFat(const Mask& fat, const Mask& skin, const Mask& interior, double closingMm) {
-  // Vessels and septa inside the fat layer are small islands of the interior; only the main body of
-  // muscle, organs and bone shapes the wall. The closing bridges the gaps of the wall (linea alba, thin
-  // muscle at 3 mm voxels) through which visceral fat would otherwise reach the skin.
-  Mask envelope = largestComponent(closeMm(largestComponent(interior), closingMm));
-  envelope = fillHolesSliceWise(envelope, axialAxis(fat.geometry));
-  const Mask outerFat = maskAndNot(fat, envelope);
-  // Fat in the outer layer that is cut off from the skin (between muscles of the limbs) is not
-  // subcutaneous.
-  return maskAnd(componentsTouching(maskOr(outerFat, skin), skin), outerFat);
+Mask subcutaneousFat(const Mask& body, const Mask& fat, const Mask& interior, const CtTissueOptions& o) {
+  // The dermis (thick on the back) is a soft-tissue sheet just under the skin, tied to the muscles by
+  // septa; left in, it would make the fat layer a cavity of the wall. Below the shell, vessels and septa
+  // in the fat are small islands, so the largest component is the wall with what it holds.
+  const Mask wall = largestComponent(maskAndNot(interior, skinShell(body, o.muscleWallMinDepthMm)));
+  // The closing bridges the gaps of the wall (linea alba, thin muscle at 3 mm voxels) through which
+  // visceral fat would otherwise reach the outer layer.
+  const Mask envelope =
+      fillHolesSliceWise(largestComponent(closeMm(wall, o.muscleWallClosingMm)), axialAxis(body.geometry));
+  return maskAndNot(fat, envelope);
 }
 
 }  // namespace vesalius::segmentation::detail

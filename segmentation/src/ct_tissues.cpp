@@ -49,8 +49,7 @@ LabelMap segmentCtTissues(const Image& ct, const CtTissueOptions& options, Progr
   const Mask inner = maskAndNot(maskAndNot(body, skin), bone);
   const Mask fat = maskAnd(inner, thresholdMask(ct, options.fatMinHu, options.fatMaxHu));
   runStage(progress, "subcutaneous fat", [&] {
-    subcutaneous = detail::subcutaneousFat(fat, skin, maskOr(maskAndNot(inner, fat), bone),
-                                           options.muscleWallClosingMm);
+    subcutaneous = detail::subcutaneousFat(body, fat, maskOr(maskAndNot(inner, fat), bone), options);
   });
   LabelMap result;
   result.labels = Grid<Label>(ct.geometry, kCtAir);

@@ -2,6 +2,7 @@
 #include "vesalius/core/attributes.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh.h"
+#include "vesalius/core/mesh_measures.h"
 
 #include <gtest/gtest.h>
 
@@ -45,14 +46,6 @@ MatrixX4i cubeInSix(const MatrixX3d& V) {
   MatrixX4i T(6, 4);
   T << 0, 1, 3, 7, 0, 1, 5, 7, 0, 2, 3, 7, 0, 2, 6, 7, 0, 4, 5, 7, 0, 4, 6, 7;
   return oriented(V, T);
-}
-
-// Divergence theorem: the signed volume enclosed by a closed, outward surface.
-double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F) {
-  double sum = 0.0;
-  for (int f = 0; f < F.rows(); ++f)
-    sum += V.row(F(f, 0)).dot(V.row(F(f, 1)).cross(V.row(F(f, 2)))) / 6.0;
-  return sum;
 }
 
 // Every directed edge of a closed, consistently oriented surface appears once, its reverse once.

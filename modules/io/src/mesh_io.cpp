@@ -1,6 +1,8 @@
 // Mesh files by extension, and mesh summaries (mesh_io.h).
 #include "vesalius/io/mesh_io.h"
 
+#include "vesalius/core/mesh_measures.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/text_file.h"
@@ -96,48 +98,6 @@ std::vector<std::string> attributeNames(const AttributeSet& attributes) {
   return names;
 }
 
-// Vertex-connected components of the triangles (union-find with path halving).
-int triangleComponents(const TriMesh& mesh) {
-  std::vector<int> parent(static_cast<std::size_t>(mesh.V.rows()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&parent](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 1; c < 3; ++c) parent[root(mesh.F(f, c))] = root(mesh.F(f, 0));
-  std::vector<bool> isRoot(parent.size(), false);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) isRoot[root(mesh.F(f, 0))] = true;
-  return static_cast<int>(std::count(isRoot.begin(), isRoot.end(), true));
-}
-
-void countEdges(const TriMesh& mesh, TriMeshSummary& summary) {
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int a = mesh.F(f, c), b = mesh.F(f, (c + 1) % 3);
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    summary.boundaryEdges += j - i == 1;
-    summary.nonManifoldEdges += j - i > 2;
-    i = j;
-  }
-}
-
-// Volume enclosed by a closed, consistently oriented surface: the sum of signed tet volumes from the origin.
-double enclosedVolume(const TriMesh& mesh) {
-  double sixTimesVolume = 0;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    sixTimesVolume += a.dot(b.cross(c));
-  }
-  return sixTimesVolume / 6.0;
-}
 
 std::string boundsText(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   std::ostringstream out;
@@ -223,10 +183,12 @@ TriMeshSummary summarize(const TriMesh& mesh) {
     summary.min = mesh.V.colwise().minCoeff();
     summary.max = mesh.V.colwise().maxCoeff();
   }
-  countEdges(mesh, summary);
-  summary.components = triangleComponents(mesh);
-  summary.closed = mesh.F.rows() > 0 && summary.boundaryEdges == 0 && summary.nonManifoldEdges == 0;
-  if (summary.closed) summary.volume = enclosedVolume(mesh);
+  const EdgeCounts edges = countEdges(mesh.F);
+  summary.boundaryEdges = edges.boundary;
+  summary.nonManifoldEdges = edges.nonManifold;
+  summary.components = triangleComponents(mesh.V.rows(), mesh.F);
+  summary.closed = mesh.F.rows() > 0 && edges.boundary == 0 && edges.nonManifold == 0;
+  if (summary.closed) summary.volume = enclosedVolume(mesh.V, mesh.F);
   summary.hasUv = mesh.FUV.rows() > 0;
   summary.vertexAttributes = attributeNames(mesh.vertexAttributes);
   summary.faceAttributes = attributeNames(mesh.faceAttributes);

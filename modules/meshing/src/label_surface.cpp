@@ -1,8 +1,9 @@
 // The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation.
 #include "polydata_convert.h"
 #include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/meshing/label_surface.h"
-#include "vesalius/meshing/surface_checks.h"
+#include "vesalius/core/mesh_measures.h"
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageData.h>
@@ -115,7 +116,7 @@ TriMesh labelSurface(const LabelMap& labels, Label id, const SurfaceOptions& opt
   TriMesh mesh = detail::toTriMesh(decimate(smooth(surface, options), options.targetFaces));
   // Flying edges orients every triangle consistently; a direction matrix with negative determinant
   // (RAS-stored scans read as LPS) turns the whole surface inside out, which the sign of the volume shows.
-  if (enclosedVolume(mesh) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
+  if (enclosedVolume(mesh.V, mesh.F) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
   mesh.faceAttributes.integer[kLabel] = Eigen::VectorXi::Constant(mesh.F.rows(), int(id));
   return mesh;
 }

@@ -1,0 +1,25 @@
+// Measures of triangle surfaces used to check meshes everywhere: edge counts (is it a closed
+// 2-manifold?), connected components, enclosed volume.
+#pragma once
+
+#include "vesalius/core/mesh.h"
+
+namespace vesalius {
+
+struct EdgeCounts {
+  long boundary = 0;     // edges of exactly one triangle (0 for a closed surface)
+  long nonManifold = 0;  // edges of three or more triangles
+};
+
+// F: #F by 3 triangles.
+EdgeCounts countEdges(const MatrixX3i& F);
+
+// Components of triangles connected through shared vertices. V only gives the vertex count (#V).
+int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F);
+
+// Signed volume enclosed by a closed surface, by the divergence theorem: sum over triangles of
+// a · (b × c) / 6. Positive for outward (counter-clockwise seen from outside) triangles; cavities count
+// negative. Units: those of V cubed.
+double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F);
+
+}  // namespace vesalius

@@ -1,0 +1,52 @@
+#include "vesalius/core/mesh_measures.h"
+
+#include <algorithm>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace vesalius {
+
+EdgeCounts countEdges(const MatrixX3i& F) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(static_cast<std::size_t>(3 * F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = F(f, c), b = F(f, (c + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  EdgeCounts counts;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    counts.boundary += j - i == 1;
+    counts.nonManifold += j - i > 2;
+    i = j;
+  }
+  return counts;
+}
+
+int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F) {
+  // Union-find with path halving.
+  std::vector<int> parent(static_cast<std::size_t>(vertexCount));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&parent](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 1; c < 3; ++c) parent[root(F(f, c))] = root(F(f, 0));
+  std::vector<bool> isRoot(parent.size(), false);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) isRoot[root(F(f, 0))] = true;
+  return static_cast<int>(std::count(isRoot.begin(), isRoot.end(), true));
+}
+
+double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F) {
+  double sixTimesVolume = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    sixTimesVolume += V.row(F(f, 0)).dot(V.row(F(f, 1)).cross(V.row(F(f, 2))));
+  return sixTimesVolume / 6.0;
+}
+
+}  // namespace vesalius
