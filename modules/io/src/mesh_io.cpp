@@ -2,6 +2,7 @@
 #include "vesalius/io/mesh_io.h"
 
 #include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/self_intersections.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_formats.h"
@@ -189,6 +190,7 @@ TriMeshSummary summarize(const TriMesh& mesh) {
   summary.components = triangleComponents(mesh.V.rows(), mesh.F);
   summary.closed = mesh.F.rows() > 0 && edges.boundary == 0 && edges.nonManifold == 0;
   if (summary.closed) summary.volume = enclosedVolume(mesh.V, mesh.F);
+  summary.selfIntersections = long(selfIntersections(mesh.V, mesh.F).size());
   summary.hasUv = mesh.FUV.rows() > 0;
   summary.vertexAttributes = attributeNames(mesh.vertexAttributes);
   summary.faceAttributes = attributeNames(mesh.faceAttributes);
@@ -227,6 +229,7 @@ std::string describe(const TriMeshSummary& s) {
       << boundsText(s.min, s.max) << "\n"
       << "edges: " << s.boundaryEdges << " boundary, " << s.nonManifoldEdges << " non-manifold ("
       << (s.closed ? "closed 2-manifold" : "not closed") << ")\n";
+  out << "self-intersections: " << s.selfIntersections << " pairs of crossing triangles\n";
   if (s.volume) out << "enclosed volume: " << *s.volume << " mm^3\n";
   out << namesText("vertex", s.vertexAttributes) << "\n" << namesText("face", s.faceAttributes) << "\n";
   return out.str();

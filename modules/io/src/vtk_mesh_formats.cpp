@@ -3,6 +3,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/polydata.h"
 #include "vesalius/io/text_file.h"
 
 #include <vtkCellArray.h>
@@ -663,5 +664,9 @@ void writeVtkTetMesh(const TetMesh& mesh, const std::string& path, bool binary) 
     throw UsageError(path + ": not a VTK tet mesh format (.vtu, .vtk)");
   }
 }
+
+TriMesh fromPolyData(vtkPolyData* data, const std::string& source) { return importPolyData(data, source); }
+
+vtkSmartPointer<vtkPolyData> toPolyData(const TriMesh& mesh) { return exportPolyData(mesh); }
 
 }  // namespace vesalius::io

@@ -57,6 +57,7 @@ struct TriMeshSummary {
   long nonManifoldEdges = 0;  // edges of three or more triangles
   int components = 0;         // sets of triangles connected through shared vertices
   bool closed = false;        // a closed 2-manifold: no boundary and no non-manifold edges
+  long selfIntersections = 0;  // pairs of triangles that cross (core/self_intersections.h)
   std::optional<double> volume;  // mm^3 by the divergence theorem, only when closed (negative if inside out)
   bool hasUv = false;
   std::vector<std::string> vertexAttributes, faceAttributes;  // names

@@ -1,0 +1,154 @@
+// Self-intersections of a triangle surface (see the header for the method and its conventions).
+#include "vesalius/core/self_intersections.h"
+
+#include "vesalius/core/box_tree.h"
+#include "vesalius/core/error.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace vesalius {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+// Six times the signed volume of (a, b, c, d): positive when d lies on the side of abc its normal
+// (b - a) × (c - a) points away from.
+double orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return (a - d).dot((b - d).cross(c - d));
+}
+
+double orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 u = b - a, v = c - a;
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+bool opposite(double x, double y) { return (x > 0 && y < 0) || (x < 0 && y > 0); }
+
+// r on the closed segment pq, given that the three are collinear.
+bool onSegment2d(const Vec2& p, const Vec2& q, const Vec2& r) {
+  return r.x() >= std::min(p.x(), q.x()) && r.x() <= std::max(p.x(), q.x()) && r.y() >= std::min(p.y(), q.y()) &&
+         r.y() <= std::max(p.y(), q.y());
+}
+
+bool segmentsIntersect2d(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
+  const double o1 = orient2d(p, q, r), o2 = orient2d(p, q, s), o3 = orient2d(r, s, p), o4 = orient2d(r, s, q);
+  if (opposite(o1, o2) && opposite(o3, o4)) return true;
+  return (o1 == 0 && onSegment2d(p, q, r)) || (o2 == 0 && onSegment2d(p, q, s)) ||
+         (o3 == 0 && onSegment2d(r, s, p)) || (o4 == 0 && onSegment2d(r, s, q));
+}
+
+bool insideTriangle2d(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double d1 = orient2d(a, b, p), d2 = orient2d(b, c, p), d3 = orient2d(c, a, p);
+  const bool negative = d1 < 0 || d2 < 0 || d3 < 0, positive = d1 > 0 || d2 > 0 || d3 > 0;
+  return !(negative && positive);
+}
+
+// Segment pq and triangle abc in one plane: compared in the coordinate plane the triangle's normal is
+// closest to, where the projection keeps every incidence.
+bool coplanarSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  Eigen::Index axis;
+  (b - a).cross(c - a).cwiseAbs().maxCoeff(&axis);
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  auto flat = [&](const Vec3& x) { return Vec2(x(i), x(j)); };
+  const Vec2 p2 = flat(p), q2 = flat(q), a2 = flat(a), b2 = flat(b), c2 = flat(c);
+  return insideTriangle2d(p2, a2, b2, c2) || insideTriangle2d(q2, a2, b2, c2) ||
+         segmentsIntersect2d(p2, q2, a2, b2) || segmentsIntersect2d(p2, q2, b2, c2) ||
+         segmentsIntersect2d(p2, q2, c2, a2);
+}
+
+bool segmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double op = orient3d(a, b, c, p), oq = orient3d(a, b, c, q);
+  if ((op > 0 && oq > 0) || (op < 0 && oq < 0)) return false;
+  if (op == 0 && oq == 0) return coplanarSegmentTriangle(p, q, a, b, c);
+  // pq crosses the plane: it meets the triangle iff the line pq passes inside all three edges.
+  const double s1 = orient3d(p, q, a, b), s2 = orient3d(p, q, b, c), s3 = orient3d(p, q, c, a);
+  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+// Triangles (u, v, a) and (u, v, b) sharing the edge uv overlap only when folded onto each other.
+bool foldedOnto(const Vec3& u, const Vec3& v, const Vec3& a, const Vec3& b) {
+  const Vec3 e = v - u, da = a - u, db = b - u;
+  const double scale = e.norm() * da.norm() * db.norm();
+  if (std::abs(e.dot(da.cross(db))) > 1e-12 * scale) return false;
+  const Vec3 pa = da - e * (e.dot(da) / e.squaredNorm()), pb = db - e * (e.dot(db) / e.squaredNorm());
+  return pa.dot(pb) > 0;
+}
+
+class PairTest {
+ public:
+  PairTest(const MatrixX3d& V, const MatrixX3i& F) : V_(V), F_(F) {}
+
+  bool operator()(int f, int g) const {
+    std::array<int, 3> a{F_(f, 0), F_(f, 1), F_(f, 2)}, b{F_(g, 0), F_(g, 1), F_(g, 2)};
+    // Put the shared vertices first in both triangles, in the same order.
+    int shared = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = shared; j < 3; ++j)
+        if (a[i] == b[j]) {
+          std::swap(a[i], a[shared]);
+          std::swap(b[j], b[shared]);
+          ++shared;
+          break;
+        }
+    if (shared == 3) return true;
+    if (shared == 2) return foldedOnto(p(a[0]), p(a[1]), p(a[2]), p(b[2]));
+    if (shared == 1)
+      return segmentMeetsTriangle(p(a[1]), p(a[2]), p(b[0]), p(b[1]), p(b[2])) ||
+             segmentMeetsTriangle(p(b[1]), p(b[2]), p(a[0]), p(a[1]), p(a[2]));
+    return trianglesIntersect(p(a[0]), p(a[1]), p(a[2]), p(b[0]), p(b[1]), p(b[2]));
+  }
+
+ private:
+  Vec3 p(int v) const { return V_.row(v).transpose(); }
+  const MatrixX3d& V_;
+  const MatrixX3i& F_;
+};
+
+}  // namespace
+
+bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                        const Vec3& b2) {
+  return segmentMeetsTriangle(a0, a1, b0, b1, b2) || segmentMeetsTriangle(a1, a2, b0, b1, b2) ||
+         segmentMeetsTriangle(a2, a0, b0, b1, b2) || segmentMeetsTriangle(b0, b1, a0, a1, a2) ||
+         segmentMeetsTriangle(b1, b2, a0, a1, a2) || segmentMeetsTriangle(b2, b0, a0, a1, a2);
+}
+
+std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F) {
+  if (F.rows() == 0) return {};
+  if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
+    throw BadInput("", "self-intersection test: a triangle index is outside the " + std::to_string(V.rows()) +
+                           " vertices");
+  std::vector<Eigen::AlignedBox3d> boxes(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    boxes[f].setEmpty();
+    for (int k = 0; k < 3; ++k) boxes[f].extend(V.row(F(f, k)).transpose());
+  }
+  const BoxTree tree(boxes);
+  const PairTest intersect(V, F);
+  tbb::combinable<std::vector<std::pair<int, int>>> found;
+  tbb::parallel_for(tbb::blocked_range<int>(0, int(F.rows()), 256), [&](const tbb::blocked_range<int>& range) {
+    auto& local = found.local();
+    for (int f = range.begin(); f < range.end(); ++f) {
+      // Every box overlapping box f lies within its half diagonal of its centre.
+      const double radius2 = 0.25 * boxes[f].diagonal().squaredNorm();
+      tree.near(boxes[f].center(), radius2, [&](int g) {
+        if (g > f && boxes[f].intersects(boxes[g]) && intersect(f, g)) local.emplace_back(f, g);
+        return false;
+      });
+    }
+  });
+  std::vector<std::pair<int, int>> pairs;
+  found.combine_each([&](const auto& local) { pairs.insert(pairs.end(), local.begin(), local.end()); });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace vesalius
