@@ -3,6 +3,7 @@
 
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/segmentation/mri_tissues.h"
 #include "vesalius/viz/slice_overlay.h"
 
 #include <iostream>
@@ -23,6 +24,18 @@ std::string defaultPngPath(const std::string& labels) {
   return labels.substr(0, labels.size() - ext.size()) + ".png";
 }
 
+// CT classes come from Hounsfield units; MRI (T1) classes from the scan's own histogram.
+LabelMap classify(const Image& scan, const SegmentOptions& o, Progress& progress) {
+  if (o.modality == "mri") {
+    segmentation::MriTissueOptions options;
+    options.skinThicknessMm = o.skinThickness;
+    return segmentation::segmentMriTissues(scan, options, &progress);
+  }
+  segmentation::CtTissueOptions options;
+  options.skinThicknessMm = o.skinThickness;
+  return segmentation::segmentCtTissues(scan, options, &progress);
+}
+
 void runSegment(const SegmentOptions& o) {
   io::Report report("segment");
   report.input("scan", o.scan);
@@ -35,12 +48,10 @@ void runSegment(const SegmentOptions& o) {
     auto timer = report.time("read scan");
     scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
   }
-  segmentation::CtTissueOptions options;
-  options.skinThicknessMm = o.skinThickness;
   LabelMap labels;
   {
     auto timer = report.time("segment");
-    labels = segmentation::segmentCtTissues(scan, options, &progress);
+    labels = classify(scan, o, progress);
   }
   io::writeLabelMap(o.out, labels, o.common.writeOptions());
   const std::string png = o.png.empty() ? defaultPngPath(o.out) : o.png;
@@ -60,16 +71,20 @@ void addSegmentCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("segment", "Segment a scan into tissue classes (skin, fat, soft tissue, bone)");
   cmd->add_option("--scan", o->scan, "Scan: NIfTI, NRRD, MetaImage, or a DICOM folder")->required();
   cmd->add_option("--series", o->series, "DICOM series UID when the folder holds several");
-  cmd->add_option("--modality", o->modality, "Scan modality (CT tissue classes use Hounsfield units)")
-      ->check(CLI::IsMember({"ct"}))
+  cmd->add_option("--modality", o->modality,
+                  "Scan modality: ct (classes from Hounsfield units: skin, subcutaneous_fat, fat, soft_tissue, "
+                  "bone) or mri (T1-weighted, classes from the scan's histogram: skin, subcutaneous_fat, "
+                  "dark bone such as the skull, soft_tissue)")
+      ->check(CLI::IsMember({"ct", "mri"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Label map to write (.nii.gz, .nrrd, .mha); a .tsv label table goes beside it")
       ->required();
   cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");
   cmd->add_option("--skin-thickness", o->skinThickness, "Skin shell thickness in mm")->capture_default_str();
   addCommonOptions(*cmd, o->common);
-  cmd->footer("Example:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct "
-              "--out labels.nii.gz");
+  cmd->footer("Examples:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct "
+              "--out labels.nii.gz\n  vesalius segment --scan testdata/head-mri/ch2.nii.gz --modality mri "
+              "--out head.nii.gz");
   cmd->callback([o] { runSegment(*o); });
 }
 

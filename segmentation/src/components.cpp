@@ -46,9 +46,7 @@ Mask selectWhere(const Grid<std::uint32_t>& components, bool largestOnly) {
 
 }  // namespace
 
-Mask largestComponent(const Mask& mask) {
-  return selectWhere(sortedComponents(mask, 0), true);
-}
+Mask largestComponent(const Mask& mask) { return selectWhere(sortedComponents(mask, 0), true); }
 
 Mask componentsTouching(const Mask& mask, const Mask& seeds) {
   if (seeds.values.size() != mask.values.size())

@@ -1,12 +1,10 @@
 // The stages of segmentCtTissues (ct_tissues.h), one per source file, internal to segmentation.
 #pragma once
 
+#include "skin_shell.h"
 #include "vesalius/segmentation/ct_tissues.h"
 
 namespace vesalius::segmentation::detail {
-
-// Body voxels within thicknessMm of the body surface (ct_tissues.h, stage 2).
-Mask skinShell(const Mask& body, double thicknessMm);
 
 // Bone inside the body (stage 3).
 Mask ctBone(const Image& ct, const Mask& body, const CtTissueOptions& options);

@@ -1,27 +1,13 @@
 // The CT tissue classifier: runs the stages of ct_tissues.h and writes the labels.
 #include "ct_stages.h"
-
+#include "run_stage.h"
 #include "vesalius/core/error.h"
 
-#include <functional>
+#include <limits>
 #include <string>
 
 namespace vesalius::segmentation {
 namespace {
-
-void runStage(Progress* progress, const std::string& name, const std::function<void()>& work) {
-  if (progress) progress->begin(name);
-  work();
-  if (progress) {
-    progress->update(1.0);
-    progress->end();
-  }
-}
-
-void paint(Grid<Label>& labels, const Mask& mask, Label id) {
-  for (std::size_t n = 0; n < mask.values.size(); ++n)
-    if (mask.values[n]) labels.values[n] = id;
-}
 
 // Bone voxels at or above corticalMinHu stay kCtBone (cortical); the others become trabecular.
 void splitBone(Grid<Label>& labels, const Image& ct, float corticalMinHu) {
@@ -43,21 +29,23 @@ void validate(const Image& ct, const CtTissueOptions& o) {
 LabelMap segmentCtTissues(const Image& ct, const CtTissueOptions& options, Progress* progress) {
   validate(ct, options);
   Mask body, skin, bone, subcutaneous;
-  runStage(progress, "body", [&] { body = segmentCtBody(ct, options); });
-  runStage(progress, "skin", [&] { skin = detail::skinShell(body, options.skinThicknessMm); });
-  runStage(progress, "bone", [&] { bone = maskAndNot(detail::ctBone(ct, body, options), skin); });
+  detail::runStage(progress, "body", [&] { body = segmentCtBody(ct, options); });
+  detail::runStage(progress, "skin", [&] { skin = detail::skinShell(body, options.skinThicknessMm); });
+  detail::runStage(progress, "bone", [&] { bone = maskAndNot(detail::ctBone(ct, body, options), skin); });
   const Mask inner = maskAndNot(maskAndNot(body, skin), bone);
   const Mask fat = maskAnd(inner, thresholdMask(ct, options.fatMinHu, options.fatMaxHu));
-  runStage(progress, "subcutaneous fat", [&] {
+  detail::runStage(progress, "subcutaneous fat", [&] {
     subcutaneous = detail::subcutaneousFat(body, fat, maskOr(maskAndNot(inner, fat), bone), options);
   });
   LabelMap result;
   result.labels = Grid<Label>(ct.geometry, kCtAir);
-  paint(result.labels, maskAnd(inner, thresholdMask(ct, options.fatMaxHu, 1e30f)), kCtSoftTissue);
-  paint(result.labels, fat, kCtFat);
-  paint(result.labels, subcutaneous, kCtSubcutaneousFat);
-  paint(result.labels, bone, kCtBone);
-  paint(result.labels, skin, kCtSkin);
+  paintMask(result.labels,
+        maskAnd(inner, thresholdMask(ct, options.fatMaxHu, std::numeric_limits<float>::infinity())),
+        kCtSoftTissue);
+  paintMask(result.labels, fat, kCtFat);
+  paintMask(result.labels, subcutaneous, kCtSubcutaneousFat);
+  paintMask(result.labels, bone, kCtBone);
+  paintMask(result.labels, skin, kCtSkin);
   if (options.splitBone) splitBone(result.labels, ct, options.corticalMinHu);
   result.table = ctTissueTable(options.splitBone);
   return result;

@@ -10,8 +10,7 @@
 namespace vesalius::segmentation {
 
 Grid<float> distanceToMaskMm(const Mask& mask) {
-  if (countVoxels(mask) == 0)
-    return Grid<float>(mask.geometry, std::numeric_limits<float>::infinity());
+  if (countVoxels(mask) == 0) return Grid<float>(mask.geometry, std::numeric_limits<float>::infinity());
   using MaskImage = itk::Image<std::uint8_t, 3>;
   using DistanceImage = itk::Image<float, 3>;
   auto filter = itk::SignedMaurerDistanceMapImageFilter<MaskImage, DistanceImage>::New();

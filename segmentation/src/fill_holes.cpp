@@ -62,8 +62,8 @@ void forEachVoxel(const Voxel& lo, const Voxel& hi, Visit visit) {
 // Sets to 1 each background region of the box [lo, hi) that does not reach the box border (along
 // `axes`) and has at most maxHoleVoxels voxels. `reached` has one zeroed entry per voxel of `mask`;
 // boxes filled one after another must not overlap.
-void fillBox(Mask& mask, const Voxel& lo, const Voxel& hi, const std::vector<int>& axes,
-             double maxHoleVoxels, std::vector<std::uint8_t>& reached) {
+void fillBox(Mask& mask, const Voxel& lo, const Voxel& hi, const std::vector<int>& axes, double maxHoleVoxels,
+             std::vector<std::uint8_t>& reached) {
   BackgroundFlood flood(mask, lo, hi, axes, reached);
   std::vector<Voxel> border;
   forEachVoxel(lo, hi, [&](const Voxel& v) {

@@ -44,6 +44,21 @@ Mask thresholdMask(const Grid<float>& image, float lo, float hi) {
   return out;
 }
 
+void paintMask(Grid<Label>& labels, const Mask& mask, Label id) {
+  if (mask.values.size() != labels.values.size())
+    throw BadInput("", "a mask and a label map of different sizes cannot be combined");
+  for (std::size_t n = 0; n < mask.values.size(); ++n)
+    if (mask.values[n]) labels.values[n] = id;
+}
+
+LabelMap labelMapOf(const Mask& mask, const LabelEntry& entry) {
+  LabelMap map;
+  map.labels = Grid<Label>(mask.geometry, 0);
+  paintMask(map.labels, mask, entry.id);
+  map.table.add(entry);
+  return map;
+}
+
 Mask maskAnd(const Mask& a, const Mask& b) {
   return combine(a, b, [](bool x, bool y) { return x && y; });
 }

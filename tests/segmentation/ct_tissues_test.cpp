@@ -1,9 +1,10 @@
 // CT tissue classes checked against labels made by someone else: TotalSegmentator's subcutaneous-fat
 // mask and the union of its bone labels on the 30-slice crop of the test CT, and the body mask of the
 // whole CT.
+#include "vesalius/segmentation/ct_tissues.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
-#include "vesalius/segmentation/ct_tissues.h"
 
 #include <gtest/gtest.h>
 

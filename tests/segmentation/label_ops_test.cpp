@@ -1,7 +1,11 @@
 // Label-map operations on small masks whose answers are known by construction.
 #include "vesalius/segmentation/label_ops.h"
 
+#include "vesalius/core/error.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace vesalius::segmentation {
 namespace {
@@ -58,6 +62,48 @@ TEST(LabelOps, DistanceAndMorphologyAreInMillimetres) {
   EXPECT_EQ(countVoxels(maskAndNot(ball(g, c, 4.5), dilated)), 0);
   const Grid<float> d = distanceToMaskMm(ball(g, c, 3.0));
   EXPECT_NEAR(d.at(39, 20, 20), 19.5 - 10.0 - 3.0, 0.5);  // voxel 39 is at 19.5 mm
+}
+
+TEST(LabelOps, SliceWiseFillRespectsTheAxisAndTheHoleArea) {
+  // Two square rings in every slice k: around a 2x2 hole and around an 8x8 hole (1 mm pixels). The
+  // stack of rings is open at k = 0 and k = last, so only a slice-wise fill closes them.
+  GridGeometry g = cube(20);
+  Mask rings(g, 0);
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) {
+        const bool small = i >= 1 && i <= 4 && j >= 1 && j <= 4 && !(i >= 2 && i <= 3 && j >= 2 && j <= 3);
+        const bool big = i >= 7 && i <= 16 && j >= 7 && j <= 16 && !(i >= 8 && i <= 15 && j >= 8 && j <= 15);
+        rings.at(i, j, k) = small || big;
+      }
+  EXPECT_EQ(countVoxels(fillHoles3d(rings)), countVoxels(rings));
+  EXPECT_EQ(countVoxels(fillHolesSliceWise(rings, 2)), countVoxels(rings) + 20 * (4 + 64));
+  EXPECT_EQ(countVoxels(fillHolesSliceWise(rings, 2, 10.0)), countVoxels(rings) + 20 * 4);
+  EXPECT_EQ(countVoxels(fillHolesSliceWise(rings, 0)), countVoxels(rings));
+  EXPECT_THROW(fillHolesSliceWise(rings, 3), UsageError);
+}
+
+TEST(LabelOps, ComponentsTouchingKeepsOnlySeededComponents) {
+  const GridGeometry g = cube(20);
+  const Mask a = ball(g, {5, 5, 5}, 3), b = ball(g, {14, 14, 14}, 3);
+  Mask seeds(g, 0);
+  seeds.at(14, 14, 14) = 1;
+  EXPECT_EQ(countVoxels(componentsTouching(maskOr(a, b), seeds)), countVoxels(b));
+}
+
+TEST(LabelOps, AxialAxisFollowsTheDirection) {
+  GridGeometry g = cube(4);
+  EXPECT_EQ(axialAxis(g), 2);
+  g.direction << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // j runs inferior: a coronal acquisition
+  EXPECT_EQ(axialAxis(g), 1);
+}
+
+TEST(LabelOps, MorphologyRejectsBadRadii) {
+  const Mask m(cube(4), 1);
+  EXPECT_THROW(dilateMm(m, -1.0), UsageError);
+  EXPECT_THROW(erodeMm(m, std::nan("")), UsageError);
+  // Nothing outside the grid counts as background: a full grid survives erosion.
+  EXPECT_EQ(countVoxels(erodeMm(m, 2.0)), countVoxels(m));
 }
 
 }  // namespace

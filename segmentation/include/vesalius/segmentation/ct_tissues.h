@@ -40,8 +40,8 @@ enum CtTissue : Label {
   kCtSubcutaneousFat = 2,
   kCtFat = 3,
   kCtSoftTissue = 4,
-  kCtBone = 5,             // "bone", or "cortical_bone" when splitBone
-  kCtTrabecularBone = 6,   // only when splitBone
+  kCtBone = 5,            // "bone", or "cortical_bone" when splitBone
+  kCtTrabecularBone = 6,  // only when splitBone
 };
 
 struct CtTissueOptions {
@@ -64,8 +64,7 @@ struct CtTissueOptions {
 Mask segmentCtBody(const Image& ct, const CtTissueOptions& options);
 
 // All stages; `progress` may be null. Throws BadInput if `ct` has no voxel above bodyMinHu.
-LabelMap segmentCtTissues(const Image& ct, const CtTissueOptions& options = {},
-                          Progress* progress = nullptr);
+LabelMap segmentCtTissues(const Image& ct, const CtTissueOptions& options = {}, Progress* progress = nullptr);
 
 // The label table of segmentCtTissues: skin, subcutaneous_fat, fat, soft_tissue, bone (or
 // cortical_bone and trabecular_bone), with fixed colours.

@@ -24,6 +24,10 @@ Mask maskOf(const Grid<Label>& labels, Label id);
 Mask nonZeroMask(const Grid<Label>& labels);
 // Voxels with lo <= value <= hi.
 Mask thresholdMask(const Grid<float>& image, float lo, float hi);
+// Sets the voxels of `labels` inside `mask` to `id`; throws BadInput on a size mismatch.
+void paintMask(Grid<Label>& labels, const Mask& mask, Label id);
+// A label map holding `entry.id` inside `mask` and 0 elsewhere, with a one-entry table.
+LabelMap labelMapOf(const Mask& mask, const LabelEntry& entry);
 
 // Elementwise logic on masks of equal geometry; throws BadInput on a size mismatch.
 Mask maskAnd(const Mask& a, const Mask& b);

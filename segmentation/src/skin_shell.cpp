@@ -1,5 +1,5 @@
-// Stage 2 of the CT tissue classes: the skin shell (ct_tissues.h).
-#include "ct_stages.h"
+// The skin shell of a body mask (skin_shell.h): stage 2 of the CT and MRI tissue classes.
+#include "skin_shell.h"
 
 namespace vesalius::segmentation::detail {
 
