@@ -1,5 +1,6 @@
 // vesalius demo: the main job on the shipped data. Today: segment the example CT into tissue classes,
-// write the label map, one closed surface per class, a picture of the labels, and a report.
+// write the label map, the skin surface and one closed surface per inner class, a picture of the labels,
+// and a report.
 #include "common.h"
 
 #include "vesalius/io/image_io.h"
@@ -25,27 +26,38 @@ struct DemoOptions {
 
 std::string in(const DemoOptions& o, const std::string& name) { return (fs::path(o.out) / name).string(); }
 
-void writeSurfaces(const DemoOptions& o, const LabelMap& labels, io::Report& report, Progress& progress) {
-  std::vector<meshing::LabelSurface> surfaces;
-  {
-    auto timer = report.time("surfaces");
-    surfaces = meshing::labelSurfaces(labels, {}, meshing::SurfaceOptions{}, &progress);
-  }
-  const double voxelMl = labels.labels.geometry.spacing.prod() / 1000.0;
-  for (const meshing::LabelSurface& s : surfaces) {
-    const std::string path = in(o, s.name + ".vtp");
-    io::writeTriMesh(path, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
-    report.output(s.name, path);
-    const io::TriMeshSummary summary = io::summarize(s.mesh);
-    const double labelMl = segmentation::countVoxels(segmentation::maskOf(labels.labels, s.id)) * voxelMl;
-    report.metric(s.name, {{"triangles", summary.triangles},
-                           {"closed", summary.closed},
-                           {"components", summary.components},
-                           {"surface_volume_ml", summary.volume.value_or(0.0) / 1000.0},
-                           {"voxel_volume_ml", labelMl}});
-    std::cout << "  " << path << "  (" << s.mesh.F.rows() << " triangles, "
-              << (summary.closed ? "closed" : "open") << ", " << labelMl << " ml)\n";
-  }
+void writeSurface(const DemoOptions& o, const std::string& name, const TriMesh& mesh, double voxelMl,
+                  const std::string& what, io::Report& report) {
+  const std::string path = in(o, name + ".vtp");
+  io::writeTriMesh(path, mesh, io::MeshWriteOptions{o.common.writeOptions()});
+  report.output(name, path);
+  const io::TriMeshSummary summary = io::summarize(mesh);
+  report.metric(name, {{"triangles", summary.triangles},
+                       {"closed", summary.closed},
+                       {"components", summary.components},
+                       {"self_intersections", summary.selfIntersections},
+                       {"surface_volume_ml", summary.volume.value_or(0.0) / 1000.0},
+                       {"voxel_volume_ml", voxelMl}});
+  std::cout << "  " << path << "  (" << what << ", " << mesh.F.rows() << " triangles, "
+            << (summary.closed ? "closed" : "open") << ", " << voxelMl << " ml)\n";
+}
+
+double volumeMl(const segmentation::Mask& mask) {
+  return double(segmentation::countVoxels(mask)) * mask.geometry.spacing.prod() / 1000.0;
+}
+
+// The skin label is a shell one or two voxels thick, too thin to carry a smooth surface of its own; the
+// skin surface users want is the outer boundary of the body, so the body is meshed instead.
+void writeSurfaces(const DemoOptions& o, const Image& scan, const LabelMap& labels, io::Report& report,
+                   Progress& progress) {
+  auto timer = report.time("surfaces");
+  const segmentation::Mask body = segmentation::segmentCtBody(scan, segmentation::CtTissueOptions{});
+  writeSurface(o, "body", meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1), volumeMl(body),
+               "skin surface", report);
+  const std::vector<Label> tissues = {segmentation::kCtSubcutaneousFat, segmentation::kCtFat,
+                                      segmentation::kCtSoftTissue, segmentation::kCtBone};
+  for (const meshing::LabelSurface& s : meshing::labelSurfaces(labels, tissues, {}, &progress))
+    writeSurface(o, s.name, s.mesh, volumeMl(segmentation::maskOf(labels.labels, s.id)), "surface", report);
 }
 
 void runDemo(DemoOptions o) {
@@ -65,7 +77,7 @@ void runDemo(DemoOptions o) {
   io::writeLabelMap(in(o, "labels.nii.gz"), labels, o.common.writeOptions());
   report.output("labels", in(o, "labels.nii.gz"));
   std::cout << "  " << in(o, "labels.nii.gz") << "  (label map, table in labels.tsv)\n";
-  writeSurfaces(o, labels, report, progress);
+  writeSurfaces(o, scan, labels, report, progress);
   viz::OverlayOptions overlay;
   overlay.write = o.common.writeOptions();
   viz::writeSliceOverlayPng(scan, labels, in(o, "labels.png"), overlay);

@@ -63,7 +63,7 @@ void addSurfaceCommand(CLI::App& app) {
   cmd->add_option("--format", o->format, "File type for several labels")
       ->check(CLI::IsMember({".vtp", ".stl", ".obj", ".ply", ".vtk"}))
       ->capture_default_str();
-  cmd->add_option("--smooth", o->smoothIterations, "Windowed-sinc smoothing iterations (0: none)")
+  cmd->add_option("--smooth", o->smoothIterations, "Windowed-sinc smoothing iterations (0: none, else at least 2)")
       ->capture_default_str();
   cmd->add_option("--target-faces", o->targetFaces, "Decimate to about this many triangles (0: keep all)");
   addCommonOptions(*cmd, o->common);

@@ -21,16 +21,6 @@ namespace fs = std::filesystem;
 
 const std::string kData = VESALIUS_TESTDATA;
 
-std::string outputDir() {
-  const std::string dir = std::string(VESALIUS_TEST_OUTPUT);
-  fs::create_directories(dir);
-  return dir;
-}
-
-void expectContains(const std::string& text, const std::string& fragment) {
-  EXPECT_NE(text.find(fragment), std::string::npos) << "missing '" << fragment << "' in:\n" << text;
-}
-
 struct InfoCase {
   std::string name, file;
   std::vector<std::string> facts;
@@ -142,13 +132,14 @@ TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
 }
 
 // The main job on the shipped CT: every output exists, every surface is closed, and the surfaces enclose
-// the volume of their labels (windowed-sinc smoothing shrinks thin structures, so bone, a thin shell of
-// cortex around marrow, loses more than the thick fat layer).
+// the volume of their labels (restored by the surface offset; soft tissue, a label with many thin parts
+// that fuse when smoothed, keeps it least well; the body's offset would push thin flaps through
+// themselves, so it keeps its smoothed volume, measured 0.6% over).
 TEST(Cli, DemoWritesClosedSurfacesOfEveryTissue) {
   const std::string out = outputDir() + "/demo";
   const CommandResult r = runVesalius({"demo", "--out", out, "--force", "--progress", "none"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* file : {"labels.nii.gz", "labels.tsv", "labels.png", "report.json", "bone.vtp", "skin.vtp",
+  for (const char* file : {"labels.nii.gz", "labels.tsv", "labels.png", "report.json", "bone.vtp", "body.vtp",
                            "subcutaneous_fat.vtp", "fat.vtp", "soft_tissue.vtp"}) {
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
     expectContains(r.out, file);
@@ -162,15 +153,17 @@ TEST(Cli, DemoWritesClosedSurfacesOfEveryTissue) {
   for (const auto& [name, m] : report["metrics"].items()) {
     SCOPED_TRACE(name);
     EXPECT_TRUE(m["closed"].get<bool>());
+    EXPECT_EQ(m["self_intersections"].get<long>(), 0);
     EXPECT_GT(m["triangles"].get<long>(), 1000);
   }
   const auto relativeError = [&](const char* name) {
     const auto& m = report["metrics"][name];
     return std::abs(m["surface_volume_ml"].get<double>() / m["voxel_volume_ml"].get<double>() - 1.0);
   };
-  EXPECT_LT(relativeError("subcutaneous_fat"), 0.02);
+  EXPECT_LT(relativeError("body"), 0.01);
+  EXPECT_LT(relativeError("subcutaneous_fat"), 0.005);
   EXPECT_LT(relativeError("soft_tissue"), 0.05);
-  EXPECT_LT(relativeError("bone"), 0.10);
+  EXPECT_LT(relativeError("bone"), 0.005);
 }
 
 TEST(Cli, SegmentThenSurfaceOneLabelByName) {

@@ -1,8 +1,9 @@
 // Surfaces of labels whose shape is known: a voxelized ball on an oblique, anisotropic grid. The surface
 // must be closed, one piece, outward, in world (LPS) coordinates, and enclose the ball's volume.
+#include "vesalius/meshing/label_surface.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_io.h"
-#include "vesalius/meshing/label_surface.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +20,9 @@ LabelMap balls() {
   GridGeometry g;
   g.size = Eigen::Vector3i(48, 52, 40);
   g.spacing = Eigen::Vector3d(0.6, 0.55, 0.8);
-  g.direction = (Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()))
-                    .toRotationMatrix();
+  g.direction =
+      (Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   g.origin = kCentre - g.direction * g.spacing.cwiseProduct(Eigen::Vector3d(24, 26, 20));
   LabelMap map;
   map.labels = Grid<Label>(g, 0);
@@ -71,6 +73,48 @@ TEST(LabelSurface, OneSurfacePerLabelByName) {
   EXPECT_EQ(surfaces[0].name, "ball");
   EXPECT_EQ(surfaces[1].name, "small");
   EXPECT_TRUE(io::summarize(surfaces[1].mesh).closed);
+}
+
+TEST(LabelSurface, MirroredGridStillGivesAnOutwardSurface) {
+  // A direction with negative determinant (one axis flipped) turns marching-cubes triangles inside out.
+  LabelMap map = balls();
+  map.labels.geometry.direction.col(0) *= -1.0;
+  const TriMesh mesh = labelSurface(map, 3);
+  const io::TriMeshSummary s = io::summarize(mesh);
+  EXPECT_TRUE(s.closed);
+  ASSERT_TRUE(s.volume.has_value());
+  EXPECT_GT(*s.volume, 0.0);
+}
+
+TEST(LabelSurface, VolumeRestorationIsSkippedForShellsTooThinToCarryIt) {
+  // A one-voxel shell: smoothing collapses it, and the offset that would restore it exceeds half a voxel.
+  LabelMap map = balls();
+  for (Label& v : map.labels.values) v = v == 3 ? 0 : v;
+  const GridGeometry& g = map.labels.geometry;
+  for (int k = 0; k < g.size.z(); ++k)
+    for (int j = 0; j < g.size.y(); ++j)
+      for (int i = 0; i < g.size.x(); ++i) {
+        const double r = (g.indexToWorld(Eigen::Vector3d(i, j, k)) - kCentre).norm();
+        if (r <= kRadius && r > kRadius - 0.6) map.labels.at(i, j, k) = 3;
+      }
+  // The crossing check is off in both: it would try less smoothing, where the offset may fit.
+  SurfaceOptions restore, keep;
+  restore.avoidSelfIntersections = keep.avoidSelfIntersections = false;
+  keep.preserveVolume = false;
+  const TriMesh restored = labelSurface(map, 3, restore), raw = labelSurface(map, 3, keep);
+  EXPECT_TRUE(restored.V.isApprox(raw.V));
+}
+
+TEST(LabelSurface, BadOptionsAreUsageErrors) {
+  SurfaceOptions options;
+  options.passBand = 0.0;
+  EXPECT_THROW(labelSurface(balls(), 3, options), UsageError);
+  options = {};
+  options.targetFaces = -5;
+  EXPECT_THROW(labelSurface(balls(), 3, options), UsageError);
+  options = {};
+  options.smoothingIterations = 1;  // VTK's windowed sinc cannot do one iteration
+  EXPECT_THROW(labelSurface(balls(), 3, options), UsageError);
 }
 
 TEST(LabelSurface, MissingLabelIsBadInput) { EXPECT_THROW(labelSurface(balls(), 9), BadInput); }

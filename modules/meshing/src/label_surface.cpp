@@ -1,9 +1,13 @@
-// The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation.
-#include "polydata_convert.h"
+// The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation; and
+// the one-pass label boxes (label_boxes.h).
+#include "vesalius/meshing/label_surface.h"
+
+#include "label_boxes.h"
+#include "restore_volume.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
-#include "vesalius/meshing/label_surface.h"
-#include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/self_intersections.h"
+#include "vesalius/io/polydata.h"
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageData.h>
@@ -11,33 +15,40 @@
 #include <vtkQuadricDecimation.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
-#include <optional>
+#include <algorithm>
 #include <string>
 
 namespace vesalius::meshing {
-namespace {
+namespace detail {
 
-struct IndexBox {
-  Eigen::Vector3i lo, hi;  // inclusive voxel index bounds
-};
-
-std::optional<IndexBox> labelBounds(const Grid<Label>& labels, Label id) {
+std::vector<LabelBox> labelBoxes(const Grid<Label>& labels) {
   const Eigen::Vector3i& s = labels.geometry.size;
-  IndexBox box{s, Eigen::Vector3i::Constant(-1)};
+  const auto highest = std::max_element(labels.values.begin(), labels.values.end());
+  std::vector<LabelBox> boxes(highest == labels.values.end() ? 0 : std::size_t(*highest) + 1,
+                              LabelBox{s, Eigen::Vector3i::Constant(-1), 0});
+  std::size_t n = 0;  // linear index: i fastest, as Grid stores values
   for (int k = 0; k < s.z(); ++k)
     for (int j = 0; j < s.y(); ++j)
-      for (int i = 0; i < s.x(); ++i)
-        if (labels.at(i, j, k) == id) {
-          box.lo = box.lo.cwiseMin(Eigen::Vector3i(i, j, k));
-          box.hi = box.hi.cwiseMax(Eigen::Vector3i(i, j, k));
-        }
-  if (box.hi.x() < 0) return std::nullopt;
-  return box;
+      for (int i = 0; i < s.x(); ++i) {
+        const Label v = labels.values[n++];
+        if (v == 0) continue;  // background, most of a map: no box
+        LabelBox& box = boxes[v];
+        box.lo = box.lo.cwiseMin(Eigen::Vector3i(i, j, k));
+        box.hi = box.hi.cwiseMax(Eigen::Vector3i(i, j, k));
+        ++box.voxels;
+      }
+  return boxes;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::LabelBox;
 
 // 1 where the label is, 0 elsewhere, over the box grown by one voxel on every side; image index
 // (0, 0, 0) is grid voxel box.lo - 1. Unit spacing, zero origin: world mapping is done afterwards.
-vtkSmartPointer<vtkImageData> paddedMask(const Grid<Label>& labels, Label id, const IndexBox& box) {
+vtkSmartPointer<vtkImageData> paddedMask(const Grid<Label>& labels, Label id, const LabelBox& box) {
   const Eigen::Vector3i dims = box.hi - box.lo + Eigen::Vector3i::Constant(3);
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(dims.x(), dims.y(), dims.z());
@@ -101,24 +112,68 @@ vtkSmartPointer<vtkPolyData> decimate(vtkPolyData* surface, int targetFaces) {
 }
 
 void validate(const SurfaceOptions& o) {
-  if (o.smoothingIterations < 0 || !(o.passBand > 0.0 && o.passBand < 2.0) || o.targetFaces < 0)
-    throw UsageError("surface options need smoothing iterations >= 0, 0 < pass band < 2, target faces >= 0");
+  // One windowed-sinc iteration is a degree-one filter that VTK cannot fit ("an optimal offset could not be
+  // found") and returns a collapsed surface.
+  if (o.smoothingIterations < 0 || o.smoothingIterations == 1 || !(o.passBand > 0.0 && o.passBand < 2.0) ||
+      o.targetFaces < 0)
+    throw UsageError(
+        "surface options need smoothing iterations 0 or >= 2, 0 < pass band < 2, target faces >= 0");
 }
+
+// Smoothing, decimation and outward orientation of one contour.
+TriMesh smoothedSurface(vtkPolyData* surface, const SurfaceOptions& options) {
+  TriMesh mesh = io::fromPolyData(decimate(smooth(surface, options), options.targetFaces), "label surface");
+  // Flying edges orients every triangle consistently; a direction matrix with negative determinant
+  // (a mirrored grid) turns the whole surface inside out, which the sign of the volume shows.
+  if (enclosedVolume(mesh.V, mesh.F) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
+  return mesh;
+}
+
+bool crosses(const TriMesh& mesh) { return !selfIntersections(mesh.V, mesh.F).empty(); }
+
+// Halving the smoothing, skipping the one iteration VTK cannot do: 20, 10, 5, 2, 0.
+int lessSmoothing(int iterations) { return iterations / 2 == 1 ? 0 : iterations / 2; }
 
 }  // namespace
 
-TriMesh labelSurface(const LabelMap& labels, Label id, const SurfaceOptions& options) {
+TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelBox& box,
+                                  const SurfaceOptions& options) {
   validate(options);
-  const std::optional<IndexBox> box = labelBounds(labels.labels, id);
-  if (!box) throw BadInput("", "label " + std::to_string(id) + " has no voxels");
   const GridGeometry& geometry = labels.labels.geometry;
-  auto surface = contour(paddedMask(labels.labels, id, *box), geometry, box->lo - Eigen::Vector3i::Ones());
-  TriMesh mesh = detail::toTriMesh(decimate(smooth(surface, options), options.targetFaces));
-  // Flying edges orients every triangle consistently; a direction matrix with negative determinant
-  // (RAS-stored scans read as LPS) turns the whole surface inside out, which the sign of the volume shows.
-  if (enclosedVolume(mesh.V, mesh.F) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
+  auto contoured = contour(paddedMask(labels.labels, id, box), geometry, box.lo - Eigen::Vector3i::Ones());
+  const double voxelVolume = double(box.voxels) * geometry.spacing.prod();
+  const double maxOffset = 0.5 * geometry.spacing.minCoeff();
+  // Smoothing can pull the two sides of a thin part through each other (the test CT's left hip bone at
+  // 20 iterations), and the volume offset can push a thin flap through itself (the CT body); TetGen refuses
+  // such surfaces. The first clean one wins: with the offset, without it, then with half the smoothing.
+  SurfaceOptions attempt = options;
+  TriMesh mesh;
+  for (;;) {
+    mesh = smoothedSurface(contoured, attempt);
+    TriMesh restored = mesh;
+    const bool offset = options.preserveVolume && detail::restoreVolume(restored, voxelVolume, maxOffset);
+    if (!options.avoidSelfIntersections) {
+      if (offset) mesh = std::move(restored);
+      break;
+    }
+    if (offset && !crosses(restored)) {
+      mesh = std::move(restored);
+      break;
+    }
+    if (!crosses(mesh) || attempt.smoothingIterations == 0) break;
+    attempt.smoothingIterations = lessSmoothing(attempt.smoothingIterations);
+  }
   mesh.faceAttributes.integer[kLabel] = Eigen::VectorXi::Constant(mesh.F.rows(), int(id));
   return mesh;
+}
+
+TriMesh labelSurface(const LabelMap& labels, Label id, const SurfaceOptions& options) {
+  validate(options);
+  const std::vector<LabelBox> boxes = detail::labelBoxes(labels.labels);
+  if (id == 0) throw UsageError("label 0 is the background and has no surface");
+  if (id >= boxes.size() || boxes[id].voxels == 0)
+    throw BadInput("", "label " + std::to_string(id) + " has no voxels");
+  return detail::labelSurfaceInBox(labels, id, boxes[id], options);
 }
 
 }  // namespace vesalius::meshing

@@ -1,10 +1,11 @@
 // The legend of a slice overlay (legend.h).
 #include "legend.h"
+
 #include "overlay_style.h"
 #include "vesalius/viz/text.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,12 @@ struct LegendItem {
 
 std::string volumeText(std::int64_t voxels, const GridGeometry& g) {
   const double ml = double(voxels) * g.spacing.prod() / 1000.0;
-  return ml >= 1000.0 ? std::to_string(std::lround(ml / 100.0) / 10.0).substr(0, 5) + " L"
-                      : std::to_string(std::lround(ml)) + " ml";
+  char text[32];
+  if (ml >= 1000.0)
+    std::snprintf(text, sizeof text, "%.1f L", ml / 1000.0);
+  else
+    std::snprintf(text, sizeof text, "%.0f ml", ml);
+  return text;
 }
 
 std::vector<LegendItem> legendItems(const LabelMap& labels, int swatch) {

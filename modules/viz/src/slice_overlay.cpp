@@ -1,9 +1,10 @@
 // Slice overlay pictures (slice_overlay.h): three panels side by side, titles, edge letters, legend.
+#include "vesalius/viz/slice_overlay.h"
+
 #include "legend.h"
 #include "overlay_style.h"
 #include "slice_planes.h"
 #include "vesalius/core/error.h"
-#include "vesalius/viz/slice_overlay.h"
 #include "vesalius/viz/text.h"
 
 #include <algorithm>
@@ -58,8 +59,7 @@ RgbImage renderPanel(const Image& scan, const LabelMap& labels, const detail::Sl
 }
 
 void validate(const Image& scan, const LabelMap& labels, const OverlayOptions& o) {
-  if (labels.labels.geometry.size != scan.geometry.size ||
-      labels.labels.values.size() != scan.values.size())
+  if (labels.labels.geometry.size != scan.geometry.size || labels.labels.values.size() != scan.values.size())
     throw BadInput("", "label map and scan have different grids");
   if (!(o.window > 0) || !(o.opacity >= 0 && o.opacity <= 1) ||
       !(o.outlineOpacity >= 0 && o.outlineOpacity <= 1) || o.panelPixels < 16)
@@ -72,11 +72,11 @@ void validate(const Image& scan, const LabelMap& labels, const OverlayOptions& o
 
 RgbImage renderSliceOverlay(const Image& scan, const LabelMap& labels, const OverlayOptions& options) {
   validate(scan, labels, options);
-  const Eigen::Vector3d centreIndex = options.voxel
-                                           ? Eigen::Vector3d(options.voxel->cast<double>())
-                                           : Eigen::Vector3d((scan.geometry.size.cast<double>().array() - 1.0) / 2.0);
-  const auto planes = detail::orthogonalPlanes(scan.geometry, scan.geometry.indexToWorld(centreIndex),
-                                               options.panelPixels);
+  const Eigen::Vector3d centreIndex =
+      options.voxel ? Eigen::Vector3d(options.voxel->cast<double>())
+                    : Eigen::Vector3d((scan.geometry.size.cast<double>().array() - 1.0) / 2.0);
+  const auto planes =
+      detail::orthogonalPlanes(scan.geometry, scan.geometry.indexToWorld(centreIndex), options.panelPixels);
   std::vector<RgbImage> panels;
   int width = 2 * kMargin + 2 * kGap, height = 0;
   for (const auto& plane : planes) {

@@ -26,14 +26,15 @@ WorldBox worldBox(const GridGeometry& g) {
 
 // A panel spanning world axis `across` (left to right, increasing) and `vertical` (top to bottom,
 // increasing if `downIncreases`), through `centre` along the remaining axis.
-SlicePlane panel(const WorldBox& box, const Eigen::Vector3d& centre, double pixelMm, int across,
-                 int vertical, bool downIncreases) {
+SlicePlane panel(const WorldBox& box, const Eigen::Vector3d& centre, double pixelMm, int across, int vertical,
+                 bool downIncreases) {
   SlicePlane plane;
   plane.corner = centre;
   plane.right = Eigen::Vector3d::Unit(across) * pixelMm;
   plane.down = Eigen::Vector3d::Unit(vertical) * (downIncreases ? pixelMm : -pixelMm);
   plane.corner[across] = box.lo[across] + 0.5 * pixelMm;
-  plane.corner[vertical] = downIncreases ? box.lo[vertical] + 0.5 * pixelMm : box.hi[vertical] - 0.5 * pixelMm;
+  plane.corner[vertical] =
+      downIncreases ? box.lo[vertical] + 0.5 * pixelMm : box.hi[vertical] - 0.5 * pixelMm;
   plane.width = std::max(1, int(std::ceil((box.hi[across] - box.lo[across]) / pixelMm - 1e-6)));
   plane.height = std::max(1, int(std::ceil((box.hi[vertical] - box.lo[vertical]) / pixelMm - 1e-6)));
   return plane;

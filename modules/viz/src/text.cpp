@@ -1,7 +1,8 @@
 // Text into RgbImage with vtkFreeTypeTools (text.h): FreeType rasterises to an RGBA vtkImageData, which is
 // blended by its alpha. No render window is involved, so this works without X.
-#include "vesalius/core/error.h"
 #include "vesalius/viz/text.h"
+
+#include "vesalius/core/error.h"
 
 #include <vtkFreeTypeTools.h>
 #include <vtkImageData.h>

@@ -26,8 +26,8 @@ struct OverlayOptions {
   double window = 400.0;  // in scan units (HU for CT)
   double level = 40.0;
   std::optional<Eigen::Vector3i> voxel;  // slices pass through this voxel's centre; default the grid centre
-  double opacity = 0.4;
-  double outlineOpacity = 0.9;
+  double opacity = 0.35;
+  double outlineOpacity = 0.8;
   int panelPixels = 400;  // the longest side of the largest panel, in pixels
   WriteOptions write;
 };
