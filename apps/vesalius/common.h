@@ -31,6 +31,7 @@ void addInfoCommand(CLI::App& app);
 void addMarkersCommand(CLI::App& app);
 void addSegmentCommand(CLI::App& app);
 void addSurfaceCommand(CLI::App& app);
+void addTetmeshCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 
 }  // namespace vesalius::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   vesalius::cli::addInfoCommand(app);
   vesalius::cli::addSegmentCommand(app);
   vesalius::cli::addSurfaceCommand(app);
+  vesalius::cli::addTetmeshCommand(app);
   vesalius::cli::addMarkersCommand(app);
   vesalius::cli::addDemoCommand(app);
 

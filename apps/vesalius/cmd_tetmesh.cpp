@@ -1,0 +1,152 @@
+// vesalius tetmesh: a tetrahedral mesh of closed surfaces, or of labels of a label map (one region each).
+#include "common.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/tet_quality.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/tetrahedralize.h"
+
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace vesalius::cli {
+
+namespace {
+
+struct TetmeshOptions {
+  std::vector<std::string> surfaces, selected;
+  std::string labels, table, out;
+  int body = 0;  // with --labels: label of an outer region, the union of all non-zero voxels (0: none)
+  meshing::TetrahedralizeOptions tet;
+  CommonOptions common;
+};
+
+// A surface file's region label: the face label it carries throughout, else its position (1, 2, ...).
+std::vector<meshing::RegionSurface> readSurfaces(const TetmeshOptions& o) {
+  std::vector<meshing::RegionSurface> regions;
+  for (const std::string& path : o.surfaces) {
+    TriMesh mesh = io::readTriMesh(path);
+    const int position = int(regions.size()) + 1;
+    const auto labels = mesh.faceAttributes.integer.find(kLabel);
+    const bool uniform = labels != mesh.faceAttributes.integer.end() && labels->second.size() > 0 &&
+                         (labels->second.array() == labels->second(0)).all();
+    regions.push_back({std::move(mesh), uniform ? labels->second(0) : position, path});
+  }
+  return regions;
+}
+
+// The labels less every voxel next to the body's outside (the scan's edge counts as outside), so that a
+// bone reaching the body surface or the edge of the scan still gives a surface nested in the body's.
+Grid<Label> insideBody(const Grid<Label>& labels) {
+  Grid<Label> inner = labels;
+  const auto& n = labels.geometry.size;
+  auto outside = [&](int i, int j, int k) {
+    return i < 0 || j < 0 || k < 0 || i >= n.x() || j >= n.y() || k >= n.z() || labels.at(i, j, k) == 0;
+  };
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i)
+        for (int d = 0; d < 27 && inner.at(i, j, k) != 0; ++d)
+          if (outside(i + d % 3 - 1, j + d / 3 % 3 - 1, k + d / 9 - 1)) inner.at(i, j, k) = 0;
+  return inner;
+}
+
+std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progress& progress) {
+  LabelMap map = io::readLabelMap(o.labels, o.table);
+  std::vector<Label> ids;
+  for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
+  std::vector<meshing::RegionSurface> regions;
+  if (o.body > 0) {
+    // Seed 001 §3.2: the body's inside is one region and the chosen labels (bones) are nested in it.
+    LabelMap body{map.labels, {}};
+    for (Label& l : body.labels.values) l = l != 0;
+    regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels)"});
+    map.labels = insideBody(map.labels);
+  }
+  for (meshing::LabelSurface& s : meshing::labelSurfaces(map, ids, {}, &progress))
+    regions.push_back({std::move(s.mesh), int(s.id), o.labels + " label '" + s.name + "'"});
+  return regions;
+}
+
+std::string qualityText(const TetQualityReport& r, double enclosed) {
+  std::ostringstream s;
+  s << std::setprecision(4) << "dihedral angles  min " << r.minDihedral << " deg, max " << r.maxDihedral << " deg\n"
+    << "  per 10 deg     ";
+  for (long count : r.dihedralHistogram) s << ' ' << count;
+  s << "\nradius-edge      max " << r.maxRadiusEdge << ", mean " << r.meanRadiusEdge << "\n"
+    << "tet volume       " << r.minVolume << " .. " << r.maxVolume << " mm^3, total " << r.totalVolume
+    << " mm^3 (surfaces enclose " << enclosed << " mm^3)\n"
+    << "inverted " << r.inverted << ", flat " << r.degenerate << "\n";
+  return s.str();
+}
+
+void runTetmesh(const TetmeshOptions& o) {
+  if (o.surfaces.empty() == o.labels.empty()) throw UsageError("tetmesh: give --surface or --labels (not both)");
+  if (o.body > 0 && o.labels.empty()) throw UsageError("tetmesh: --body needs --labels");
+  io::Report report("tetmesh");
+  for (const std::string& s : o.surfaces) report.input("surface", s);
+  if (!o.labels.empty()) report.input("labels", o.labels);
+  report.parameter("radius_edge", o.tet.radiusEdge);
+  report.parameter("min_dihedral", o.tet.minDihedral);
+  report.parameter("max_volume", o.tet.maxVolume);
+  report.parameter("target_tets", o.tet.targetTets);
+  Progress progress(o.common.progressStyle());
+  const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, progress);
+  TetMesh mesh;
+  {
+    auto timer = report.time("tetrahedralize");
+    mesh = meshing::tetrahedralizeRegions(regions, o.tet);
+  }
+  io::writeTetMesh(o.out, mesh, io::MeshWriteOptions{o.common.writeOptions()});
+  report.output("tets", o.out);
+  const TetQualityReport q = tetQualityReport(mesh.V, mesh.T);
+  double enclosed = 0;
+  for (const auto& r : regions) enclosed += std::abs(enclosedVolume(r.surface.V, r.surface.F));
+  report.metric("tets", q.tets);
+  report.metric("min_dihedral_deg", q.minDihedral);
+  report.metric("max_radius_edge", q.maxRadiusEdge);
+  report.metric("inverted", q.inverted);
+  std::cout << o.out << ": " << mesh.V.rows() << " vertices, " << mesh.T.rows() << " tetrahedra in "
+            << regions.size() << " region(s)\n"
+            << qualityText(q, enclosed);
+  o.common.finish(report);
+}
+
+}  // namespace
+
+void addTetmeshCommand(CLI::App& app) {
+  auto o = std::make_shared<TetmeshOptions>();
+  CLI::App* cmd = app.add_subcommand("tetmesh", "Tetrahedral mesh (TetGen) of closed surfaces or of labels");
+  cmd->add_option("--surface", o->surfaces,
+                  "Closed surface (.stl .obj .vtp .ply .vtk), repeatable: nested or apart, one region each");
+  cmd->add_option("--labels", o->labels, "Label map: one region per label, surfaces as `vesalius surface` makes");
+  cmd->add_option("--table", o->table, "Label table for --labels (default: the one beside it)");
+  cmd->add_option("--label", o->selected, "Label id or name for --labels, repeatable (default: all in the table)");
+  cmd->add_option("--body", o->body,
+                  "With --labels: add the union of all labels as an outer region with this label; the chosen "
+                  "labels are nested in it (a body with its bones)")
+      ->check(CLI::Range(1, 65535));
+  cmd->add_option("--out", o->out, "Tet mesh (.vtu .vtk .msh .mesh .ele); tets carry the cell field 'label'")
+      ->required();
+  cmd->add_option("--quality", o->tet.radiusEdge, "Largest radius-edge ratio (TetGen -q); 0: no refinement")
+      ->capture_default_str();
+  cmd->add_option("--min-dihedral", o->tet.minDihedral, "Smallest dihedral angle aimed for, degrees")
+      ->capture_default_str();
+  cmd->add_option("--max-volume", o->tet.maxVolume, "Largest tet volume, mm^3 (0: no bound)");
+  cmd->add_option("--target-tets", o->tet.targetTets, "About this many tets (sets the volume bound)");
+  cmd->add_flag("--keep-surface", o->tet.keepSurface, "Add no points on the surfaces (TetGen -Y)");
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Examples:\n  vesalius tetmesh --surface liver.stl --out liver.vtu --max-volume 20\n"
+      "  vesalius tetmesh --surface body.vtp --surface femur_left.vtp --out body.vtu --target-tets 200000\n"
+      "  vesalius tetmesh --labels seg.nii.gz --label hip_left --label hip_right --out hips.vtu\n"
+      "  vesalius tetmesh --labels seg.nii.gz --label hip_left --label hip_right --body 1 --out body.vtu\n"
+      "Surfaces must be closed and must not cross (checked first; exit 3 otherwise).");
+  cmd->callback([o] { runTetmesh(*o); });
+}
+
+}  // namespace vesalius::cli

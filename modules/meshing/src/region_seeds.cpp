@@ -1,0 +1,96 @@
+// Region seeds by inward rays (see region_seeds.h).
+#include "region_seeds.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/triangle_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace vesalius::meshing {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// Connected part of each triangle (triangles joined through shared vertices), by union-find.
+std::vector<int> triangleParts(const TriMesh& m, int& count) {
+  std::vector<int> parent(std::size_t(m.V.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+    for (int k = 1; k < 3; ++k) parent[find(m.F(f, k))] = find(m.F(f, 0));
+  std::vector<int> id(parent.size(), -1), part(std::size_t(m.F.rows()));
+  count = 0;
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    int& root = id[find(m.F(f, 0))];
+    if (root < 0) root = count++;
+    part[f] = root;
+  }
+  return part;
+}
+
+Vec3 corner(const TriMesh& m, Eigen::Index f, int k) { return m.V.row(m.F(f, k)).transpose(); }
+
+// Distance along the ray o + t d (t > 0) to triangle f, or infinity (Möller and Trumbore 1997).
+double rayHit(const TriMesh& m, Eigen::Index f, const Vec3& o, const Vec3& d) {
+  const Vec3 a = corner(m, f, 0), e1 = corner(m, f, 1) - a, e2 = corner(m, f, 2) - a;
+  const Vec3 p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (det == 0.0) return std::numeric_limits<double>::infinity();
+  const Vec3 s = o - a;
+  const double u = s.dot(p) / det;
+  const Vec3 q = s.cross(e1);
+  const double v = d.dot(q) / det, t = e2.dot(q) / det;
+  if (u < 0 || v < 0 || u + v > 1 || t <= 0) return std::numeric_limits<double>::infinity();
+  return t;
+}
+
+// The best inward-ray midpoint over the largest triangles of one part. "Inward" is against the triangle's
+// normal, towards the material: for the inner shell of a cavity that leads away from the cavity.
+RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<int> triangles) {
+  auto area = [&](int f) { return (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).norm(); };
+  const std::size_t tries = std::min<std::size_t>(8, triangles.size());
+  std::partial_sort(triangles.begin(), triangles.begin() + long(tries), triangles.end(),
+                    [&](int f, int g) { return area(f) > area(g); });
+  RegionSeed best;
+  for (std::size_t i = 0; i < tries; ++i) {
+    const int f = triangles[i];
+    const Vec3 o = (corner(all, f, 0) + corner(all, f, 1) + corner(all, f, 2)) / 3.0;
+    const Vec3 d = -(corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).normalized();
+    double hit = std::numeric_limits<double>::infinity();
+    for (Eigen::Index g = 0; g < all.F.rows(); ++g)
+      if (g != f) hit = std::min(hit, rayHit(all, g, o, d));
+    if (!std::isfinite(hit)) continue;
+    const Vec3 point = o + 0.5 * hit * d;
+    const double clearance = std::sqrt(tree.closest(point).squaredDistance);
+    if (clearance > best.clearance) best = {point, 0, clearance};
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner) {
+  int count = 0;
+  const std::vector<int> part = triangleParts(all, count);
+  std::vector<std::vector<int>> triangles(static_cast<std::size_t>(count));
+  for (Eigen::Index f = 0; f < all.F.rows(); ++f) triangles[part[f]].push_back(int(f));
+  const TriangleTree tree(all.V, all.F);
+  std::vector<RegionSeed> seeds;
+  for (int p = 0; p < count; ++p) {
+    RegionSeed seed = seedOfPart(all, tree, triangles[p]);
+    seed.region = owner[triangles[p].front()];
+    if (seed.clearance <= 0.0)
+      throw NumericalFailure("tetrahedralize: no point found inside a part of surface " +
+                             std::to_string(seed.region) + " (is it flat?)");
+    seeds.push_back(seed);
+  }
+  return seeds;
+}
+
+}  // namespace vesalius::meshing

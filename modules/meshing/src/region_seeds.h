@@ -1,0 +1,22 @@
+// Seed points for TetGen's regions: one point strictly inside each closed part of each surface and outside
+// every surface nested in that part (see tetrahedralize.h for the method).
+#pragma once
+
+#include "vesalius/core/mesh.h"
+
+#include <vector>
+
+namespace vesalius::meshing {
+
+struct RegionSeed {
+  Eigen::Vector3d point;
+  int region = 0;          // index of the surface whose region the point lies in
+  double clearance = 0.0;  // distance to the nearest triangle of any surface, mm
+};
+
+// `all` holds every surface's triangles (closed, outward, not intersecting, parts not sharing vertices); `owner`
+// (#F) the surface index of each triangle. One seed per connected part; throws NumericalFailure if a part
+// has no room for one (a flat part).
+std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner);
+
+}  // namespace vesalius::meshing

@@ -1,0 +1,209 @@
+// Tetrahedral meshes through TetGen's library interface (see tetrahedralize.h).
+#include "vesalius/meshing/tetrahedralize.h"
+
+#include "improve_dihedrals.h"
+#include "region_seeds.h"
+#include "tetgen_terminate.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/self_intersections.h"
+
+#include <tetgen.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace vesalius::meshing {
+namespace {
+
+// Every surface in one mesh (outward: an inside-out surface is flipped), with each triangle's surface.
+struct Combined {
+  TriMesh all;
+  std::vector<int> owner;   // #F surface index
+  std::vector<int> offset;  // first triangle of each surface
+};
+
+std::string surfaceName(const std::vector<RegionSurface>& regions, std::size_t i) {
+  return regions[i].name.empty() ? "surface " + std::to_string(i + 1) : regions[i].name;
+}
+
+Combined combine(const std::vector<RegionSurface>& regions) {
+  Combined c;
+  Eigen::Index vertices = 0, triangles = 0;
+  for (const RegionSurface& r : regions) vertices += r.surface.V.rows(), triangles += r.surface.F.rows();
+  c.all.V.resize(vertices, 3);
+  c.all.F.resize(triangles, 3);
+  vertices = triangles = 0;
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    const TriMesh& s = regions[i].surface;
+    MatrixX3i F = s.F.array() + int(vertices);
+    if (enclosedVolume(s.V, s.F) < 0) F.col(1).swap(F.col(2));
+    c.all.V.middleRows(vertices, s.V.rows()) = s.V;
+    c.all.F.middleRows(triangles, s.F.rows()) = F;
+    c.offset.push_back(int(triangles));
+    c.owner.insert(c.owner.end(), std::size_t(s.F.rows()), int(i));
+    vertices += s.V.rows(), triangles += s.F.rows();
+  }
+  return c;
+}
+
+void checkEach(const std::vector<RegionSurface>& regions) {
+  if (regions.empty()) throw BadInput("", "tetrahedralize: no surfaces given");
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    const std::string name = surfaceName(regions, i);
+    const TriMesh& s = regions[i].surface;
+    s.validate(name);
+    if (s.F.rows() == 0) throw BadInput(name, "the surface has no triangles");
+    const EdgeCounts edges = countEdges(s.F);
+    if (edges.boundary > 0)
+      throw BadInput(name, "open surface (" + std::to_string(edges.boundary) +
+                               " boundary edges); a tet mesh needs a closed surface");
+    if (edges.nonManifold > 0)
+      throw BadInput(name, "not a 2-manifold (" + std::to_string(edges.nonManifold) +
+                               " edges of three or more triangles)");
+    if (enclosedVolume(s.V, s.F) == 0.0) throw BadInput(name, "the surface encloses no volume");
+  }
+}
+
+void checkCrossings(const std::vector<RegionSurface>& regions, const Combined& c) {
+  const auto pairs = selfIntersections(c.all.V, c.all.F);
+  if (pairs.empty()) return;
+  const auto [f, g] = pairs.front();
+  const int a = c.owner[f], b = c.owner[g];
+  const std::string count = std::to_string(pairs.size()) + " pairs of triangles cross (first: triangles " +
+                            std::to_string(f - c.offset[a]) + " and " + std::to_string(g - c.offset[b]);
+  if (a == b) throw BadInput(surfaceName(regions, a), "self-intersecting surface: " + count + ")");
+  throw BadInput(surfaceName(regions, a), "intersects " + surfaceName(regions, b) + ": " + count +
+                                              "); surfaces must be nested or apart");
+}
+
+std::string switches(const TetrahedralizeOptions& o, double maxVolume) {
+  std::ostringstream s;
+  s << "pzQA";  // PLC input, 0-based, quiet, region attributes
+  if (o.radiusEdge > 0) s << "q" << o.radiusEdge << "/" << o.minDihedral;
+  if (maxVolume > 0) s << std::fixed << std::setprecision(9) << "a" << maxVolume;
+  s << "O" << o.optimizationLevel << "o/" << o.maxDihedral;
+  if (o.keepSurface) s << "Y";
+  return s.str();
+}
+
+void fillInput(const Combined& c, const std::vector<RegionSeed>& seeds, tetgenio& in) {
+  in.firstnumber = 0;
+  in.numberofpoints = int(c.all.V.rows());
+  in.pointlist = new REAL[3 * std::size_t(in.numberofpoints)];
+  for (int v = 0; v < in.numberofpoints; ++v)
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = c.all.V(v, k);
+  in.numberoffacets = int(c.all.F.rows());
+  in.facetlist = new tetgenio::facet[std::size_t(in.numberoffacets)];
+  for (int f = 0; f < in.numberoffacets; ++f) {
+    tetgenio::facet& facet = in.facetlist[f];
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    facet.numberofholes = 0;
+    facet.holelist = nullptr;
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist = new int[3]{c.all.F(f, 0), c.all.F(f, 1), c.all.F(f, 2)};
+  }
+  in.numberofregions = int(seeds.size());
+  in.regionlist = new REAL[5 * seeds.size()];
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    const REAL region[5] = {seeds[i].point.x(), seeds[i].point.y(), seeds[i].point.z(),
+                            REAL(seeds[i].region + 1), -1.0};  // attribute 0 is left for unclaimed cavities
+    std::copy(region, region + 5, in.regionlist + 5 * i);
+  }
+}
+
+// TetGen's tets of the seeded regions, positively oriented, with only the vertices they use.
+TetMesh convertOutput(const tetgenio& out, const std::vector<RegionSurface>& regions) {
+  std::vector<int> keep, label;
+  for (int t = 0; t < out.numberoftetrahedra; ++t) {
+    const long region = std::lround(out.tetrahedronattributelist[t * out.numberoftetrahedronattributes]) - 1;
+    if (region < 0 || region >= long(regions.size())) continue;
+    keep.push_back(t);
+    label.push_back(regions[std::size_t(region)].label);
+  }
+  if (keep.empty()) throw NumericalFailure("TetGen produced no tetrahedra inside the surfaces");
+  std::vector<int> index(std::size_t(out.numberofpoints), -1);
+  TetMesh mesh;
+  mesh.T.resize(Eigen::Index(keep.size()), 4);
+  int used = 0;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      int& v = index[std::size_t(out.tetrahedronlist[keep[i] * out.numberofcorners + k])];
+      if (v < 0) v = used++;
+      mesh.T(Eigen::Index(i), k) = v;
+    }
+  mesh.V.resize(used, 3);
+  for (int p = 0; p < out.numberofpoints; ++p)
+    if (index[p] >= 0) mesh.V.row(index[p]) << out.pointlist[3 * p], out.pointlist[3 * p + 1], out.pointlist[3 * p + 2];
+  const Eigen::VectorXd volumes = tetVolumes(mesh.V, mesh.T);
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+    if (volumes(t) < 0) std::swap(mesh.T(t, 2), mesh.T(t, 3));
+  mesh.tetAttributes.integer[kLabel] = Eigen::Map<const Eigen::VectorXi>(label.data(), Eigen::Index(label.size()));
+  return mesh;
+}
+
+TetMesh runTetgen(const Combined& c, const std::vector<RegionSeed>& seeds, const std::vector<RegionSurface>& regions,
+                  const std::string& flags) {
+  tetgenio in, out;
+  fillInput(c, seeds, in);
+  std::string buffer = flags;
+  try {
+    ::tetrahedralize(buffer.data(), &in, &out);
+  } catch (int code) {  // the library's own terminatetetgen, should ours not be the one linked
+    throw NumericalFailure("TetGen failed: " + tetgenErrorText(code));
+  }
+  return convertOutput(out, regions);
+}
+
+TetMesh mesh(const Combined& c, const std::vector<RegionSeed>& seeds, const std::vector<RegionSurface>& regions,
+             const TetrahedralizeOptions& options, double maxVolume) {
+  TetMesh result = runTetgen(c, seeds, regions, switches(options, maxVolume));
+  if (options.radiusEdge > 0) improveDihedrals(result, options.minDihedral, maxVolume);
+  return result;
+}
+
+}  // namespace
+
+void checkTetgenInput(const std::vector<RegionSurface>& regions) {
+  checkEach(regions);
+  checkCrossings(regions, combine(regions));
+}
+
+TetMesh tetrahedralizeRegions(const std::vector<RegionSurface>& regions, const TetrahedralizeOptions& options) {
+  if (options.radiusEdge < 0 || options.minDihedral < 0 || options.minDihedral >= 70 || options.maxVolume < 0 ||
+      options.targetTets < 0 || options.optimizationLevel < 0 || options.optimizationLevel > 9 ||
+      options.maxDihedral <= 70 || options.maxDihedral >= 180)
+    throw UsageError("tetrahedralize: radius-edge, volume and tet count must not be negative, the minimum "
+                     "dihedral angle must be below 70 degrees, the maximum between 70 and 180, the "
+                     "optimization level 0 to 9");
+  checkEach(regions);
+  const Combined c = combine(regions);
+  checkCrossings(regions, c);
+  const std::vector<RegionSeed> seeds = regionSeeds(c.all, c.owner);
+  if (options.targetTets == 0) return mesh(c, seeds, regions, options, options.maxVolume);
+  // Tet count goes about as 1 / volume bound: start from a guess (Delaunay refinement leaves tets well
+  // below the bound on average) and rescale by the count obtained.
+  double bound = 3.0 * enclosedVolume(c.all.V, c.all.F) / double(options.targetTets);
+  TetMesh result;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    result = mesh(c, seeds, regions, options, bound);
+    const double ratio = double(result.T.rows()) / double(options.targetTets);
+    if (std::abs(ratio - 1.0) <= 0.15) break;
+    bound *= ratio;
+  }
+  return result;
+}
+
+TetMesh tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options, const std::string& source) {
+  RegionSurface region{surface, 1, source};
+  const auto labels = surface.faceAttributes.integer.find(kLabel);
+  if (labels != surface.faceAttributes.integer.end() && labels->second.size() > 0 &&
+      (labels->second.array() == labels->second(0)).all())
+    region.label = labels->second(0);
+  return tetrahedralizeRegions({region}, options);
+}
+
+}  // namespace vesalius::meshing

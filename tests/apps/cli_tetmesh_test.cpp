@@ -1,0 +1,147 @@
+// `vesalius tetmesh` end to end: a Visible Human muscle, two labels of the test CT and a body with a bone
+// inside become tet meshes with the volume they should have; an open and a self-intersecting surface are
+// refused with exit 3 and one line, writing nothing; `vesalius info` counts self-intersections.
+#include "run_command.h"
+
+#include "vesalius/core/mesh_measures.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+
+namespace vesalius::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = VESALIUS_TESTDATA;
+
+std::string outputPath(const std::string& name) {
+  const fs::path dir = fs::path(VESALIUS_TEST_OUTPUT) / "tetmesh";
+  fs::create_directories(dir);
+  fs::remove(dir / name);
+  return (dir / name).string();
+}
+
+double printedMinDihedral(const std::string& out) {
+  std::smatch m;
+  if (!std::regex_search(out, m, std::regex("dihedral angles  min ([0-9.]+) deg"))) return -1;
+  return std::stod(m[1]);
+}
+
+TEST(CliTetmesh, MuscleSurface) {
+  const std::string surface = kData + "/muscles/VHF_Left_Muscle_GluteusMinimus_smooth.stl";
+  const std::string out = outputPath("gluteus_minimus.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--surface", surface, "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_GE(printedMinDihedral(r.out), 10.0) << r.out;
+  EXPECT_NE(r.out.find("inverted 0, flat 0"), std::string::npos) << r.out;
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  const TriMesh input = io::readTriMesh(surface);
+  EXPECT_GT(s.tets, 10000);
+  EXPECT_EQ(s.inverted, 0);
+  EXPECT_EQ(s.tetsPerLabel.size(), 1u);
+  EXPECT_NEAR(s.totalVolume / enclosedVolume(input.V, input.F), 1.0, 1e-6);
+}
+
+TEST(CliTetmesh, TwoLabelsOfTheCtGiveTwoRegions) {
+  const std::string labels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
+  const std::string table = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
+  const std::string out = outputPath("gluteus_medius.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--labels", labels, "--table", table, "--label",
+                                       "gluteus_medius_left", "--label", "gluteus_medius_right", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_GE(printedMinDihedral(r.out), 10.0) << r.out;
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  ASSERT_EQ(s.tetsPerLabel.size(), 2u);
+  EXPECT_GT(s.tetsPerLabel.at(96), 1000);
+  EXPECT_GT(s.tetsPerLabel.at(97), 1000);
+  // The label surfaces keep their voxels' volume (label_surface.h), so the tets do too.
+  const LabelMap map = io::readLabelMap(labels, table);
+  const auto voxels = std::count_if(map.labels.values.begin(), map.labels.values.end(),
+                                    [](Label l) { return l == 96 || l == 97; });
+  const double voxelVolume = double(voxels) * map.labels.geometry.spacing.prod();
+  RecordProperty("volume_ratio", std::to_string(s.totalVolume / voxelVolume));
+  EXPECT_NEAR(s.totalVolume / voxelVolume, 1.0, 0.02);
+}
+
+// A ball of soft tissue (label 1) around a ball of bone (label 5), 2 mm voxels: --body meshes the union as
+// the outer region with the bone nested inside it (seed 001 §3.2).
+TEST(CliTetmesh, BodyWithABoneInside) {
+  GridGeometry g;
+  g.size = {30, 30, 30};
+  g.spacing = {2, 2, 2};
+  LabelMap map{Grid<Label>(g), {}};
+  map.table.add({1, "soft", {200, 100, 100}});
+  map.table.add({5, "bone", {240, 220, 150}});
+  long soft = 0, bone = 0;
+  for (int k = 0; k < 30; ++k)
+    for (int j = 0; j < 30; ++j)
+      for (int i = 0; i < 30; ++i) {
+        const double r = Eigen::Vector3d(i - 14.5, j - 14.5, k - 14.5).norm();
+        const Label l = r < 6 ? 5 : (r < 12 ? 1 : 0);
+        map.labels.at(i, j, k) = l;
+        soft += l == 1;
+        bone += l == 5;
+      }
+  const std::string labels = outputPath("ball.nii.gz");
+  fs::remove(outputPath("ball.tsv"));
+  io::writeLabelMap(labels, map);
+  const std::string out = outputPath("ball.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--labels", labels, "--label", "bone", "--body", "1", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_GE(printedMinDihedral(r.out), 10.0) << r.out;
+  const TetMesh mesh = io::readTetMesh(out);
+  const Eigen::VectorXd volumes = tetVolumes(mesh.V, mesh.T);
+  const Eigen::VectorXi& label = mesh.tetAttributes.integer.at(kLabel);
+  double softVolume = 0, boneVolume = 0;
+  for (Eigen::Index t = 0; t < volumes.size(); ++t) (label(t) == 5 ? boneVolume : softVolume) += volumes(t);
+  EXPECT_TRUE(((label.array() == 1) || (label.array() == 5)).all());
+  // The surfaces keep their voxels' volume (label_surface.h).
+  EXPECT_NEAR(boneVolume / (8.0 * double(bone)), 1.0, 0.02);
+  EXPECT_NEAR(softVolume / (8.0 * double(soft)), 1.0, 0.02);
+}
+
+TEST(CliTetmesh, OpenSurfaceIsRefusedInOneLine) {
+  TriMesh open = io::readTriMesh(kData + "/liver/liver.obj");
+  open.F.conservativeResize(open.F.rows() - 1, 3);
+  const std::string surface = outputPath("open_liver.obj");
+  io::writeTriMesh(surface, open);
+  const std::string out = outputPath("open_liver.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--surface", surface, "--out", out});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(r.err, "vesalius: " + surface + ": open surface (3 boundary edges); a tet mesh needs a closed surface\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliTetmesh, SelfIntersectingSurfaceIsRefused) {
+  const std::string surface = kData + "/liver/liver-smooth.obj";
+  const std::string out = outputPath("liver_smooth.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--surface", surface, "--out", out});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(r.err.rfind("vesalius: " + surface + ": self-intersecting surface: 7 pairs", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliTetmesh, InfoReportsSelfIntersections) {
+  const CommandResult crossed = runVesalius({"info", kData + "/liver/liver-smooth.obj"});
+  ASSERT_EQ(crossed.exitCode, 0) << crossed.err;
+  EXPECT_NE(crossed.out.find("self-intersections: 7 pairs of crossing triangles"), std::string::npos) << crossed.out;
+  const CommandResult clean = runVesalius({"info", kData + "/muscles/VHF_Left_Muscle_GluteusMedius_smooth.stl"});
+  ASSERT_EQ(clean.exitCode, 0) << clean.err;
+  EXPECT_NE(clean.out.find("self-intersections: 0 pairs"), std::string::npos) << clean.out;
+}
+
+TEST(CliTetmesh, HelpHasAnExample) {
+  const CommandResult r = runVesalius({"tetmesh", "--help"});
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("vesalius tetmesh --surface"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace vesalius::test
