@@ -58,9 +58,9 @@ INSTANTIATE_TEST_SUITE_P(TestCt, CtStructure,
 TEST(TetMeshData, VisibleHumanMusclesAndLiverTemplate) {
   for (const std::string muscle : {"GluteusMaximus", "GluteusMedius", "GluteusMinimus"})
     expectGoodTetMesh(io::readTriMesh(kData + "/muscles/VHF_Left_Muscle_" + muscle + "_smooth.stl"), muscle);
-  // The coarse SOFA liver (274 triangles, many of them needles) keeps a few tets whose vertices all lie on
-  // the surface, which smoothing may not move: measured 4.8°.
-  expectGoodTetMesh(io::readTriMesh(kData + "/liver/liver.obj"), "liver_template", 4.5);
+  // The coarse SOFA liver (274 triangles, many of them needles) keeps a tet at 9.4° that splitting and
+  // smoothing do not raise further.
+  expectGoodTetMesh(io::readTriMesh(kData + "/liver/liver.obj"), "liver_template", 9.0);
 }
 
 // liver-smooth.obj crosses itself where two thin sheets meet; TetGen would abort on it.

@@ -97,6 +97,20 @@ TEST(Tetrahedralize, CavityOfAHollowShellIsLeftEmpty) {
   for (Eigen::Index t = 0; t < m.T.rows(); ++t) ASSERT_GT(centroid(m, t).norm(), 4.5);
 }
 
+TEST(Tetrahedralize, CavityOfAHollowInsideABodyBelongsToTheBody) {
+  // A hollow bone in a body: the marrow cavity is body tissue, so the mesh fills the whole body.
+  const TriMesh body = test::sphere(3, 20.0), bone = test::concatenate(test::sphere(3, 10.0), flipped(test::sphere(3, 5.0)));
+  const TetMesh m = meshing::tetrahedralizeRegions({{body, 1, "body"}, {bone, 2, "bone"}});
+  const double bodyVolume = enclosedVolume(body.V, body.F), boneVolume = enclosedVolume(bone.V, bone.F);
+  EXPECT_NEAR(tetVolumes(m.V, m.T).sum(), bodyVolume, 1e-9 * bodyVolume);
+  EXPECT_NEAR(volumeOfLabel(m, 2), boneVolume, 1e-9 * boneVolume);
+  const Eigen::VectorXi& labels = m.tetAttributes.integer.at(kLabel);
+  for (Eigen::Index t = 0; t < m.T.rows(); ++t)
+    if (centroid(m, t).norm() < 4.5) {
+      ASSERT_EQ(labels(t), 1) << "cavity tet " << t;
+    }
+}
+
 TEST(Tetrahedralize, PartsApartAreBothFilled) {
   const TriMesh two = test::concatenate(test::sphere(2, 3.0), test::sphere(2, 2.0, {10, 0, 0}));
   const TetMesh m = meshing::tetrahedralize(two);

@@ -42,7 +42,8 @@ Edge edge(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 // from one side to the other, or lying flat on the surface. Splitting its longest edge that lies on no
 // fixed face at the midpoint, and the tets around that edge with it, gives a free vertex smoothing can
 // move. The surfaces are unchanged. Edges are chosen so that no tet is split twice.
-void splitPinnedTets(TetMesh& mesh, std::vector<bool>& fixed, const std::set<Edge>& fixedEdges, double target) {
+// Returns whether any tet was split.
+bool splitPinnedTets(TetMesh& mesh, std::vector<bool>& fixed, const std::set<Edge>& fixedEdges, double target) {
   const Eigen::VectorXd minDihedral = tetQuality(mesh.V, mesh.T).minDihedral;
   std::map<Edge, std::vector<int>> around;  // chosen edge -> tets holding it
   for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
@@ -58,7 +59,7 @@ void splitPinnedTets(TetMesh& mesh, std::vector<bool>& fixed, const std::set<Edg
             longest = e, length = l;
     if (longest) around.emplace(*longest, std::vector<int>{});
   }
-  if (around.empty()) return;
+  if (around.empty()) return false;
   for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
@@ -91,6 +92,14 @@ void splitPinnedTets(TetMesh& mesh, std::vector<bool>& fixed, const std::set<Edg
   rows.head(old) = Eigen::VectorXi::LinSpaced(old, 0, int(old) - 1);
   rows.tail(Eigen::Index(source.size())) = Eigen::Map<const Eigen::VectorXi>(source.data(), Eigen::Index(source.size()));
   mesh.tetAttributes = mesh.tetAttributes.selectRows(rows);
+  return true;
+}
+
+std::vector<std::vector<int>> tetsOfVertices(const TetMesh& mesh) {
+  std::vector<std::vector<int>> tetsOf(std::size_t(mesh.V.rows()));
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+    for (int k = 0; k < 4; ++k) tetsOf[std::size_t(mesh.T(t, k))].push_back(int(t));
+  return tetsOf;
 }
 
 class Star {
@@ -154,11 +163,9 @@ void improveDihedrals(TetMesh& mesh, double targetDegrees, double maxVolume, int
       fixed[std::size_t(faces(f, k))] = true;
       fixedEdges.insert(edge(faces(f, k), faces(f, (k + 1) % 3)));
     }
-  splitPinnedTets(mesh, fixed, fixedEdges, targetDegrees);
-  std::vector<std::vector<int>> tetsOf(std::size_t(mesh.V.rows()));
-  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
-    for (int k = 0; k < 4; ++k) tetsOf[std::size_t(mesh.T(t, k))].push_back(int(t));
+  std::vector<std::vector<int>> tetsOf = tetsOfVertices(mesh);
   for (int pass = 0; pass < passes; ++pass) {
+    if (splitPinnedTets(mesh, fixed, fixedEdges, targetDegrees)) tetsOf = tetsOfVertices(mesh);
     const Eigen::VectorXd minDihedral = tetQuality(mesh.V, mesh.T).minDihedral;
     bool any = false;
     for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {

@@ -2,6 +2,7 @@
 #include "region_seeds.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/triangle_tree.h"
 
 #include <algorithm>
@@ -51,8 +52,8 @@ double rayHit(const TriMesh& m, Eigen::Index f, const Vec3& o, const Vec3& d) {
 }
 
 // The best inward-ray midpoint over the largest triangles of one part. "Inward" is against the triangle's
-// normal, towards the material: for the inner shell of a cavity that leads away from the cavity.
-RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<int> triangles) {
+// normal, towards the material (side -1), or with it (side +1): into the cavity an inner shell bounds.
+RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<int> triangles, double side) {
   auto area = [&](int f) { return (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).norm(); };
   const std::size_t tries = std::min<std::size_t>(8, triangles.size());
   std::partial_sort(triangles.begin(), triangles.begin() + long(tries), triangles.end(),
@@ -61,7 +62,7 @@ RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<
   for (std::size_t i = 0; i < tries; ++i) {
     const int f = triangles[i];
     const Vec3 o = (corner(all, f, 0) + corner(all, f, 1) + corner(all, f, 2)) / 3.0;
-    const Vec3 d = -(corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).normalized();
+    const Vec3 d = side * (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).normalized();
     double hit = std::numeric_limits<double>::infinity();
     for (Eigen::Index g = 0; g < all.F.rows(); ++g)
       if (g != f) hit = std::min(hit, rayHit(all, g, o, d));
@@ -69,6 +70,26 @@ RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<
     const Vec3 point = o + 0.5 * hit * d;
     const double clearance = std::sqrt(tree.closest(point).squaredDistance);
     if (clearance > best.clearance) best = {point, 0, clearance};
+  }
+  return best;
+}
+
+// Whether p is inside the triangles `faces` (closed), by the parity of crossings along a fixed oblique ray.
+bool inside(const TriMesh& all, const std::vector<int>& faces, const Vec3& p) {
+  const Vec3 d = Vec3(0.5773, 0.5774, 0.5775).normalized();  // off the axes, which voxel surfaces align with
+  int crossings = 0;
+  for (int f : faces) crossings += std::isfinite(rayHit(all, f, p, d));
+  return crossings % 2 == 1;
+}
+
+// The surface whose region a cavity point lies in: the smallest other surface holding it; -1 if none.
+int enclosingSurface(const TriMesh& all, const std::vector<std::vector<int>>& facesOf, int self, const Vec3& p) {
+  int best = -1;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < int(facesOf.size()); ++s) {
+    if (s == self || !inside(all, facesOf[std::size_t(s)], p)) continue;
+    const double volume = enclosedVolume(all.V, all.F(facesOf[std::size_t(s)], Eigen::all));
+    if (volume < smallest) best = s, smallest = volume;
   }
   return best;
 }
@@ -81,14 +102,26 @@ std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& 
   std::vector<std::vector<int>> triangles(static_cast<std::size_t>(count));
   for (Eigen::Index f = 0; f < all.F.rows(); ++f) triangles[part[f]].push_back(int(f));
   const TriangleTree tree(all.V, all.F);
+  std::vector<std::vector<int>> facesOf;
+  for (Eigen::Index f = 0; f < all.F.rows(); ++f) {
+    if (owner[f] >= int(facesOf.size())) facesOf.resize(std::size_t(owner[f]) + 1);
+    facesOf[std::size_t(owner[f])].push_back(int(f));
+  }
   std::vector<RegionSeed> seeds;
   for (int p = 0; p < count; ++p) {
-    RegionSeed seed = seedOfPart(all, tree, triangles[p]);
-    seed.region = owner[triangles[p].front()];
+    const int surface = owner[triangles[p].front()];
+    RegionSeed seed = seedOfPart(all, tree, triangles[p], -1.0);
+    seed.region = surface;
     if (seed.clearance <= 0.0)
       throw NumericalFailure("tetrahedralize: no point found inside a part of surface " +
                              std::to_string(seed.region) + " (is it flat?)");
     seeds.push_back(seed);
+    // The cavity of an inner shell (a hollow in a bone) belongs to the surface around the shell's
+    // surface (the body), if any; otherwise it stays empty.
+    if (enclosedVolume(all.V, all.F(triangles[p], Eigen::all)) >= 0.0) continue;
+    RegionSeed cavity = seedOfPart(all, tree, triangles[p], 1.0);
+    cavity.region = cavity.clearance > 0.0 ? enclosingSurface(all, facesOf, surface, cavity.point) : -1;
+    if (cavity.region >= 0) seeds.push_back(cavity);
   }
   return seeds;
 }

@@ -1,5 +1,5 @@
 // Seed points for TetGen's regions: one point strictly inside each closed part of each surface and outside
-// every surface nested in that part (see tetrahedralize.h for the method).
+// every surface nested in that part, and one in each cavity another surface holds (see tetrahedralize.h).
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -16,7 +16,8 @@ struct RegionSeed {
 
 // `all` holds every surface's triangles (closed, outward, not intersecting, parts not sharing vertices); `owner`
 // (#F) the surface index of each triangle. One seed per connected part; throws NumericalFailure if a part
-// has no room for one (a flat part).
+// has no room for one (a flat part). A part facing inward (the inner shell of a hollow) gets a second
+// seed inside its cavity, for the smallest other surface holding that point, if there is one.
 std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner);
 
 }  // namespace vesalius::meshing

@@ -3,14 +3,16 @@
 // by Delaunay refinement until every tet meets the radius-edge and volume bounds, then optimized by flips
 // and vertex smoothing. TetGen 1.5 does not enforce its dihedral bound, so the tets it leaves below
 // minDihedral are smoothed once more: their vertices off the surfaces move to raise the worst angle
-// around them (Freitag and Ollivier-Gooch, IJNME 40, 1997).
+// around them (Freitag and Ollivier-Gooch, IJNME 40, 1997); a bad tet with every vertex on a surface
+// first gets an inner edge split so that it has a vertex to move.
 //
 // Several closed surfaces that are nested or apart (a body with bones inside it, seed 001 §3.2) give one
 // conforming mesh: TetGen's region attributes (-A) mark every tet with the region it lies in, the region
 // of a surface being its inside less the surfaces nested in it. Each region is found from a seed point:
 // for each connected part of a surface, a ray from the centroid of one of its largest triangles is cast
-// inward to the first surface it meets, and the midpoint with the largest clearance is used. Enclosed
-// cavities no surface claims (the inside of an inward-facing inner shell) are removed.
+// inward to the first surface it meets, and the midpoint with the largest clearance is used. The cavity
+// of an inward-facing inner shell (a hollow in a bone) belongs to the smallest other surface around it
+// (the body); cavities no other surface holds are removed.
 //
 // Input is checked before TetGen sees it, because TetGen aborts or loops on bad surfaces: every surface
 // must be a closed 2-manifold, and no triangle may cross another of any surface (self_intersections.h).
