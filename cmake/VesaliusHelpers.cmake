@@ -37,5 +37,13 @@ function(vesalius_test)
     VESALIUS_TESTDATA="${PROJECT_SOURCE_DIR}/testdata"
     VESALIUS_TEST_OUTPUT="${PROJECT_BINARY_DIR}/test-output/${T_NAME}")
   vesalius_target_flags(${T_NAME})
-  gtest_discover_tests(${T_NAME} NO_PRETTY_VALUES PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+  set(environment "")
+  if(VESALIUS_SANITIZE AND "gui" IN_LIST T_LABELS)
+    # Mesa's GL driver, loaded by dlopen under Xvfb, leaks a few hundred bytes and is unloaded before
+    # LeakSanitizer reports, so the leak cannot be attributed or suppressed by name. GUI tests keep
+    # ASan and UBSan but not the leak check.
+    set(environment ENVIRONMENT ASAN_OPTIONS=detect_leaks=0)
+  endif()
+  gtest_discover_tests(${T_NAME} NO_PRETTY_VALUES PROPERTIES LABELS "${T_LABELS}" ${environment}
+                       DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -1,10 +1,13 @@
 #include "run_command.h"
 
+#include <gtest/gtest.h>
+
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -46,6 +49,16 @@ CommandResult runVesalius(const std::vector<std::string>& args) {
   std::remove(outPath);
   std::remove(errPath);
   return r;
+}
+
+std::string outputDir() {
+  const std::string dir = VESALIUS_TEST_OUTPUT;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void expectContains(const std::string& text, const std::string& fragment) {
+  EXPECT_NE(text.find(fragment), std::string::npos) << "missing '" << fragment << "' in:\n" << text;
 }
 
 }  // namespace vesalius::test

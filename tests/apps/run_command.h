@@ -14,4 +14,10 @@ struct CommandResult {
 // Runs VESALIUS_EXE with `args` (no shell: arguments are passed as they are).
 CommandResult runVesalius(const std::vector<std::string>& args);
 
+// This test program's output folder (VESALIUS_TEST_OUTPUT), created if missing.
+std::string outputDir();
+
+// A gtest failure showing `text` unless it contains `fragment`.
+void expectContains(const std::string& text, const std::string& fragment);
+
 }  // namespace vesalius::test

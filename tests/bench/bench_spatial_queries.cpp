@@ -6,7 +6,8 @@
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/mesh_io.h"
 
-#include <chrono>
+#include "bench_support.h"
+
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -14,14 +15,9 @@
 #include <random>
 
 using namespace vesalius;
+using bench::seconds;
 
 namespace {
-
-double seconds(const std::function<void()>& work) {
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Random points in the mesh's bounding box grown by 10 %.
 MatrixX3d randomPoints(const MatrixX3d& V, int count) {
