@@ -8,6 +8,7 @@
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/tetrahedralize.h"
+#include "vesalius/segmentation/label_ops.h"
 
 #include <iomanip>
 #include <iostream>
@@ -41,11 +42,11 @@ std::vector<meshing::RegionSurface> readSurfaces(const TetmeshOptions& o) {
 
 // The labels less every voxel next to the body's outside (the scan's edge counts as outside), so that a
 // bone reaching the body surface or the edge of the scan still gives a surface nested in the body's.
-Grid<Label> insideBody(const Grid<Label>& labels) {
+Grid<Label> insideBody(const Grid<Label>& body, const Grid<Label>& labels) {
   Grid<Label> inner = labels;
   const auto& n = labels.geometry.size;
   auto outside = [&](int i, int j, int k) {
-    return i < 0 || j < 0 || k < 0 || i >= n.x() || j >= n.y() || k >= n.z() || labels.at(i, j, k) == 0;
+    return i < 0 || j < 0 || k < 0 || i >= n.x() || j >= n.y() || k >= n.z() || body.at(i, j, k) == 0;
   };
   for (int k = 0; k < n.z(); ++k)
     for (int j = 0; j < n.y(); ++j)
@@ -61,11 +62,12 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   std::vector<meshing::RegionSurface> regions;
   if (o.body > 0) {
-    // Seed 001 §3.2: the body's inside is one region and the chosen labels (bones) are nested in it.
-    LabelMap body{map.labels, {}};
-    for (Label& l : body.labels.values) l = l != 0;
-    regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels)"});
-    map.labels = insideBody(map.labels);
+    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included)
+    // and the chosen labels (bones) are nested in it.
+    const LabelMap body = segmentation::labelMapOf(segmentation::fillHoles3d(segmentation::nonZeroMask(map.labels)),
+                                                   {1, "body"});
+    regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels, holes filled)"});
+    map.labels = insideBody(body.labels, map.labels);
   }
   for (meshing::LabelSurface& s : meshing::labelSurfaces(map, ids, {}, &progress))
     regions.push_back({std::move(s.mesh), int(s.id), o.labels + " label '" + s.name + "'"});

@@ -4,6 +4,7 @@
 #include "run_command.h"
 
 #include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/tet_locator.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 
@@ -69,8 +70,9 @@ TEST(CliTetmesh, TwoLabelsOfTheCtGiveTwoRegions) {
   EXPECT_NEAR(s.totalVolume / voxelVolume, 1.0, 0.02);
 }
 
-// A ball of soft tissue (label 1) around a ball of bone (label 5), 2 mm voxels: --body meshes the union as
-// the outer region with the bone nested inside it (seed 001 §3.2).
+// A ball of soft tissue (label 1) around a ball of bone (label 5), 2 mm voxels, with an air pocket (label 0)
+// in the soft tissue: --body meshes the union, holes filled, as the outer region with the bone nested
+// inside it (seed 001 §3.2).
 TEST(CliTetmesh, BodyWithABoneInside) {
   GridGeometry g;
   g.size = {30, 30, 30};
@@ -83,9 +85,10 @@ TEST(CliTetmesh, BodyWithABoneInside) {
     for (int j = 0; j < 30; ++j)
       for (int i = 0; i < 30; ++i) {
         const double r = Eigen::Vector3d(i - 14.5, j - 14.5, k - 14.5).norm();
-        const Label l = r < 6 ? 5 : (r < 12 ? 1 : 0);
+        const bool air = Eigen::Vector3d(i - 23.5, j - 14.5, k - 14.5).norm() < 2.0;
+        const Label l = r < 6 ? 5 : (r < 12 && !air ? 1 : 0);
         map.labels.at(i, j, k) = l;
-        soft += l == 1;
+        soft += l == 1 || (r < 12 && air);  // the pocket is body
         bone += l == 5;
       }
   const std::string labels = outputPath("ball.nii.gz");
@@ -101,6 +104,9 @@ TEST(CliTetmesh, BodyWithABoneInside) {
   double softVolume = 0, boneVolume = 0;
   for (Eigen::Index t = 0; t < volumes.size(); ++t) (label(t) == 5 ? boneVolume : softVolume) += volumes(t);
   EXPECT_TRUE(((label.array() == 1) || (label.array() == 5)).all());
+  const auto pocket = TetLocator(mesh.V, mesh.T).locate(Eigen::Vector3d(47, 29, 29));  // voxel (23.5, 14.5, 14.5)
+  ASSERT_TRUE(pocket.has_value()) << "the air pocket was left out of the body";
+  EXPECT_EQ(label(pocket->tet), 1);
   // The surfaces keep their voxels' volume (label_surface.h).
   EXPECT_NEAR(boneVolume / (8.0 * double(bone)), 1.0, 0.02);
   EXPECT_NEAR(softVolume / (8.0 * double(soft)), 1.0, 0.02);

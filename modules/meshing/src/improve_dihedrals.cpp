@@ -4,7 +4,6 @@
 #include "vesalius/core/tet_quality.h"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <map>
 #include <optional>
