@@ -2,7 +2,6 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/tet_quality.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
@@ -62,10 +61,12 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   std::vector<meshing::RegionSurface> regions;
   if (o.body > 0) {
-    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included)
-    // and the chosen labels (bones) are nested in it.
-    const LabelMap body = segmentation::labelMapOf(segmentation::fillHoles3d(segmentation::nonZeroMask(map.labels)),
-                                                   {1, "body"});
+    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included, also
+    // where the scan's first or last slice cuts them: hence the axial fill) and the chosen labels (bones)
+    // are nested in it.
+    const segmentation::Mask solid = segmentation::fillHoles3d(segmentation::nonZeroMask(map.labels));
+    const LabelMap body = segmentation::labelMapOf(
+        segmentation::fillHolesSliceWise(solid, segmentation::axialAxis(solid.geometry)), {1, "body"});
     regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels, holes filled)"});
     map.labels = insideBody(body.labels, map.labels);
   }
@@ -74,16 +75,18 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   return regions;
 }
 
-std::string qualityText(const TetQualityReport& r, double enclosed) {
-  std::ostringstream s;
-  s << std::setprecision(4) << "dihedral angles  min " << r.minDihedral << " deg, max " << r.maxDihedral << " deg\n"
-    << "  per 10 deg     ";
-  for (long count : r.dihedralHistogram) s << ' ' << count;
-  s << "\nradius-edge      max " << r.maxRadiusEdge << ", mean " << r.meanRadiusEdge << "\n"
-    << "tet volume       " << r.minVolume << " .. " << r.maxVolume << " mm^3, total " << r.totalVolume
-    << " mm^3 (surfaces enclose " << enclosed << " mm^3)\n"
-    << "inverted " << r.inverted << ", flat " << r.degenerate << "\n";
-  return s.str();
+std::string qualityText(const TetQualityReport& r, const io::TetMeshSummary& s) {
+  std::ostringstream out;
+  out << std::setprecision(4) << "dihedral angles  min " << r.minDihedral << " deg, max " << r.maxDihedral << " deg\n"
+      << "  per 10 deg     ";
+  for (long count : r.dihedralHistogram) out << ' ' << count;
+  out << "\nradius-edge      max " << r.maxRadiusEdge << ", mean " << r.meanRadiusEdge << "\n"
+      << "tet volume       " << r.minVolume << " .. " << r.maxVolume << " mm^3, total " << r.totalVolume << " mm^3\n"
+      << "per label        ";
+  for (const auto& [label, volume] : s.volumePerLabel)
+    out << ' ' << label << ": " << s.tetsPerLabel.at(label) << " tets, " << volume << " mm^3;";
+  out << "\ninverted " << r.inverted << ", flat " << r.degenerate << "\n";
+  return out.str();
 }
 
 void runTetmesh(const TetmeshOptions& o) {
@@ -106,15 +109,13 @@ void runTetmesh(const TetmeshOptions& o) {
   io::writeTetMesh(o.out, mesh, io::MeshWriteOptions{o.common.writeOptions()});
   report.output("tets", o.out);
   const TetQualityReport q = tetQualityReport(mesh.V, mesh.T);
-  double enclosed = 0;
-  for (const auto& r : regions) enclosed += std::abs(enclosedVolume(r.surface.V, r.surface.F));
   report.metric("tets", q.tets);
   report.metric("min_dihedral_deg", q.minDihedral);
   report.metric("max_radius_edge", q.maxRadiusEdge);
   report.metric("inverted", q.inverted);
   std::cout << o.out << ": " << mesh.V.rows() << " vertices, " << mesh.T.rows() << " tetrahedra in "
             << regions.size() << " region(s)\n"
-            << qualityText(q, enclosed);
+            << qualityText(q, io::summarize(mesh));
   o.common.finish(report);
 }
 

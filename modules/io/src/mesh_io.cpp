@@ -215,7 +215,10 @@ TetMeshSummary summarize(const TetMesh& mesh) {
   }
   const auto labels = mesh.tetAttributes.integer.find(kLabel);
   if (labels != mesh.tetAttributes.integer.end())
-    for (Eigen::Index t = 0; t < labels->second.size(); ++t) ++summary.tetsPerLabel[labels->second(t)];
+    for (Eigen::Index t = 0; t < labels->second.size(); ++t) {
+      ++summary.tetsPerLabel[labels->second(t)];
+      summary.volumePerLabel[labels->second(t)] += volumes(t);
+    }
   summary.vertexAttributes = attributeNames(mesh.vertexAttributes);
   summary.tetAttributes = attributeNames(mesh.tetAttributes);
   summary.faceAttributes = attributeNames(mesh.faceAttributes);
@@ -243,8 +246,9 @@ std::string describe(const TetMeshSummary& s) {
       << "volume: " << s.totalVolume << " mm^3 total, tets from " << s.minVolume << " to " << s.maxVolume
       << " mm^3, " << s.inverted << " inverted\n";
   if (!s.tetsPerLabel.empty()) {
-    out << "labels (tets):";
-    for (const auto& [label, count] : s.tetsPerLabel) out << " " << label << " (" << count << ")";
+    out << "labels (tets, mm^3):";
+    for (const auto& [label, count] : s.tetsPerLabel)
+      out << " " << label << " (" << count << ", " << s.volumePerLabel.at(label) << ")";
     out << "\n";
   }
   out << namesText("vertex", s.vertexAttributes) << "\n"

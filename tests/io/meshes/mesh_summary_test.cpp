@@ -75,7 +75,10 @@ TEST(TetMeshSummary, VolumesInvertedAndLabels) {
   EXPECT_NEAR(s.maxVolume, 2.0 / 6, 1e-15);
   EXPECT_EQ(s.inverted, 1);
   EXPECT_EQ(s.tetsPerLabel, (std::map<int, long>{{4, 2}, {9, 1}}));
-  EXPECT_NE(describe(s).find("labels (tets): 4 (2) 9 (1)"), std::string::npos) << describe(s);
+  EXPECT_NEAR(s.volumePerLabel.at(4), 0.5, 1e-15);
+  EXPECT_NEAR(s.volumePerLabel.at(9), -1.0 / 6, 1e-15);
+  EXPECT_NE(describe(s).find("labels (tets, mm^3): 4 (2, 0.5) 9 (1, -0.166667)"), std::string::npos)
+      << describe(s);
 }
 
 }  // namespace

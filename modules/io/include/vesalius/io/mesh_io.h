@@ -69,6 +69,7 @@ struct TetMeshSummary {
   double totalVolume = 0, minVolume = 0, maxVolume = 0;  // signed tet volumes, mm^3 (zero if no tets)
   long inverted = 0;                  // tets with negative volume
   std::map<int, long> tetsPerLabel;   // integer tet attribute kLabel; empty without one
+  std::map<int, double> volumePerLabel;  // mm^3, same keys
   std::vector<std::string> vertexAttributes, tetAttributes, faceAttributes;  // names
 };
 
