@@ -6,8 +6,10 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/segmentation/label_resample.h"
 
 #include <iomanip>
 #include <iostream>
@@ -55,8 +57,20 @@ Grid<Label> insideBody(const Grid<Label>& body, const Grid<Label>& labels) {
   return inner;
 }
 
+// Seed 001 §3.2 keeps the image it meshes under 250x700x120 voxels by its choice of voxel size; larger
+// maps are resampled (nearest neighbour) onto such a grid.
+LabelMap cappedLabels(LabelMap map) {
+  const GridGeometry capped =
+      segmentation::cappedGeometry(map.labels.geometry, meshing::CoveringGridOptions{}.maxSize);
+  if (capped.size == map.labels.geometry.size) return map;
+  const Eigen::Vector3i& s = map.labels.geometry.size;
+  std::cout << "label map resampled from " << s.x() << "x" << s.y() << "x" << s.z() << " to " << capped.size.x()
+            << "x" << capped.size.y() << "x" << capped.size.z() << " voxels (at most 250 L, 120 P, 700 S)\n";
+  return segmentation::resampleLabels(map, capped);
+}
+
 std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progress& progress) {
-  LabelMap map = io::readLabelMap(o.labels, o.table);
+  LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   std::vector<meshing::RegionSurface> regions;

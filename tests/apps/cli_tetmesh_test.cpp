@@ -112,6 +112,28 @@ TEST(CliTetmesh, BodyWithABoneInside) {
   EXPECT_NEAR(softVolume / (8.0 * double(soft)), 1.0, 0.02);
 }
 
+// A map longer than seed 001's cap (250 voxels along L) is resampled before meshing and keeps its volume.
+TEST(CliTetmesh, LabelMapOverTheSizeCapIsResampled) {
+  GridGeometry g;
+  g.size = {300, 30, 30};
+  LabelMap map{Grid<Label>(g), {}};
+  map.table.add({2, "rod", {200, 100, 100}});
+  long voxels = 0;
+  for (int k = 0; k < 30; ++k)
+    for (int j = 0; j < 30; ++j)
+      for (int i = 20; i < 280; ++i)
+        if (Eigen::Vector2d(j - 14.5, k - 14.5).norm() < 10) map.labels.at(i, j, k) = 2, ++voxels;
+  const std::string labels = outputPath("rod.nii.gz");
+  fs::remove(outputPath("rod.tsv"));
+  io::writeLabelMap(labels, map);
+  const std::string out = outputPath("rod.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--labels", labels, "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  expectContains(r.out, "label map resampled from 300x30x30 to 250x30x30 voxels");
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  EXPECT_NEAR(s.totalVolume / double(voxels), 1.0, 0.03);
+}
+
 TEST(CliTetmesh, OpenSurfaceIsRefusedInOneLine) {
   TriMesh open = io::readTriMesh(kData + "/liver/liver.obj");
   open.F.conservativeResize(open.F.rows() - 1, 3);
