@@ -1,8 +1,9 @@
 // TetGen's error exit, replaced so that its failures become exceptions we can catch.
 //
 // libtet's own terminatetetgen frees the mesh and throws an int; the mesh's destructor then frees it
-// again while the exception unwinds, and the program crashes (../shared/BUILD-NOTES.md). This definition
-// takes precedence over the library's weak one and throws without freeing: unwinding frees the mesh once.
+// again while the exception unwinds, and the program crashes (seen with Debian's libtet 1.5). This
+// definition takes precedence over the library's weak one and throws without freeing: unwinding frees
+// the mesh once.
 // tetgen.h is not included here because it defines the function inline.
 #include "tetgen_terminate.h"
 
