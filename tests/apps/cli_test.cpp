@@ -131,10 +131,9 @@ TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
   EXPECT_EQ(runVesalius({"markers", "convert", in, "--out", out, "--force"}).exitCode, 0);
 }
 
-// The main job on the shipped CT: every output exists, every surface is closed, and the surfaces enclose
-// the volume of their labels (restored by the surface offset; soft tissue, a label with many thin parts
-// that fuse when smoothed, keeps it least well; the body's offset would push thin flaps through
-// themselves, so it keeps its smoothed volume, measured 0.6% over).
+// The main job on the shipped CT: every output exists, every surface is closed and free of crossing
+// triangles, and the surfaces enclose the volume of their labels (restored by the surface offset, undone
+// only around the places where it would make triangles cross).
 TEST(Cli, DemoWritesClosedSurfacesOfEveryTissue) {
   const std::string out = outputDir() + "/demo";
   const CommandResult r = runVesalius({"demo", "--out", out, "--force", "--progress", "none"});
@@ -160,10 +159,8 @@ TEST(Cli, DemoWritesClosedSurfacesOfEveryTissue) {
     const auto& m = report["metrics"][name];
     return std::abs(m["surface_volume_ml"].get<double>() / m["voxel_volume_ml"].get<double>() - 1.0);
   };
-  EXPECT_LT(relativeError("body"), 0.01);
-  EXPECT_LT(relativeError("subcutaneous_fat"), 0.005);
-  EXPECT_LT(relativeError("soft_tissue"), 0.05);
-  EXPECT_LT(relativeError("bone"), 0.005);
+  for (const char* name : {"body", "subcutaneous_fat", "fat", "soft_tissue", "bone"})
+    EXPECT_LT(relativeError(name), 0.005) << name;  // measured at most 0.17 % (fat)
 }
 
 TEST(Cli, SegmentThenSurfaceOneLabelByName) {

@@ -131,6 +131,27 @@ TriMesh smoothedSurface(vtkPolyData* surface, const SurfaceOptions& options) {
 
 bool crosses(const TriMesh& mesh) { return !selfIntersections(mesh.V, mesh.F).empty(); }
 
+// Where the volume offset pushed a thin flap or two close pieces through each other, the vertices of the
+// crossing triangles and their neighbours go back to `before` (a clean surface); up to eight rounds (the
+// demo's body needs seven).
+// Returns whether the surface is then clean. The rest of the surface keeps its offset.
+bool offsetOnlyWhereClean(TriMesh& offset, const MatrixX3d& before) {
+  for (int round = 0; round < 8; ++round) {
+    const std::vector<std::pair<int, int>> pairs = selfIntersections(offset.V, offset.F);
+    if (pairs.empty()) return true;
+    std::vector<bool> crossing(std::size_t(offset.V.rows()), false), back = crossing;
+    for (const auto& [f, g] : pairs)
+      for (int k = 0; k < 3; ++k) crossing[std::size_t(offset.F(f, k))] = crossing[std::size_t(offset.F(g, k))] = true;
+    for (Eigen::Index f = 0; f < offset.F.rows(); ++f)
+      if (crossing[std::size_t(offset.F(f, 0))] || crossing[std::size_t(offset.F(f, 1))] ||
+          crossing[std::size_t(offset.F(f, 2))])
+        for (int k = 0; k < 3; ++k) back[std::size_t(offset.F(f, k))] = true;
+    for (Eigen::Index v = 0; v < offset.V.rows(); ++v)
+      if (back[std::size_t(v)]) offset.V.row(v) = before.row(v);
+  }
+  return !crosses(offset);
+}
+
 // Halving the smoothing, skipping the one iteration VTK cannot do: 20, 10, 5, 2, 0.
 int lessSmoothing(int iterations) { return iterations / 2 == 1 ? 0 : iterations / 2; }
 
@@ -144,23 +165,24 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
   const double voxelVolume = double(box.voxels) * geometry.spacing.prod();
   const double maxOffset = 0.5 * geometry.spacing.minCoeff();
   // Smoothing can pull the two sides of a thin part through each other (the test CT's left hip bone at
-  // 20 iterations), and the volume offset can push a thin flap through itself (the CT body); TetGen refuses
-  // such surfaces. The first clean one wins: with the offset, without it, then with half the smoothing.
+  // 20 iterations); TetGen refuses such surfaces. The smoothing is halved until the surface is clean; the
+  // volume offset is then kept wherever it crosses nothing.
   SurfaceOptions attempt = options;
   TriMesh mesh;
   for (;;) {
     mesh = smoothedSurface(contoured, attempt);
-    TriMesh restored = mesh;
-    const bool offset = options.preserveVolume && detail::restoreVolume(restored, voxelVolume, maxOffset);
     if (!options.avoidSelfIntersections) {
-      if (offset) mesh = std::move(restored);
+      if (options.preserveVolume) detail::restoreVolume(mesh, voxelVolume, maxOffset);
       break;
     }
-    if (offset && !crosses(restored)) {
-      mesh = std::move(restored);
+    const bool clean = !crosses(mesh);
+    if (clean || attempt.smoothingIterations == 0) {
+      TriMesh offset = mesh;
+      if (clean && options.preserveVolume && detail::restoreVolume(offset, voxelVolume, maxOffset) &&
+          offsetOnlyWhereClean(offset, mesh.V))
+        mesh = std::move(offset);
       break;
     }
-    if (!crosses(mesh) || attempt.smoothingIterations == 0) break;
     attempt.smoothingIterations = lessSmoothing(attempt.smoothingIterations);
   }
   mesh.faceAttributes.integer[kLabel] = Eigen::VectorXi::Constant(mesh.F.rows(), int(id));

@@ -14,9 +14,9 @@
 // voxels. It is skipped when the distance would exceed half a voxel (a label only a voxel or two thick,
 // such as a skin shell, cannot carry its volume as a smooth surface; mesh the body instead).
 // Smoothing can pull the two sides of a thin part through each other, and the offset can push a thin flap
-// through itself. So that every surface can be handed to TetGen, the first of these without crossing
-// triangles (core/self_intersections.h) is returned: smoothed and offset, smoothed only, then the same with
-// half the smoothing iterations (20, 10, 5, 2), down to the unsmoothed contour.
+// or two close pieces through each other. So that every surface can be handed to TetGen, the smoothing
+// is halved (20, 10, 5, 2, 0) until the smoothed surface has no crossing triangles
+// (core/self_intersections.h), and the offset is then undone around any triangles it makes cross.
 // Output: V in mm (LPS), F counter-clockwise seen from outside, face attribute kLabel = the label id.
 #pragma once
 
@@ -34,7 +34,7 @@ struct SurfaceOptions {
   double passBand = 0.05;        // windowed-sinc pass band in (0, 2); lower smooths more
   int targetFaces = 0;           // decimate to about this many faces; 0 keeps them all
   bool preserveVolume = true;    // restore the voxel volume by a normal offset (see above)
-  bool avoidSelfIntersections = true;  // give up offset, then smoothing, until no triangles cross
+  bool avoidSelfIntersections = true;  // less smoothing, and no offset where it crosses (see above)
 };
 
 // The surface of label `id`. Throws BadInput if no voxel carries `id`, UsageError on bad options or id 0
