@@ -1,6 +1,7 @@
 // selfIntersections on constructed surfaces: crossing tetrahedra, a clean sphere, a sphere with a vertex
 // pushed through the far side (a fold), triangles that share vertices or an edge, and a random soup
 // checked against the all-pairs answer.
+#include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/self_intersections.h"
 #include "test_shapes.h"
@@ -101,6 +102,17 @@ TEST(SelfIntersections, RandomSoupMatchesAllPairs) {
         expected.emplace_back(f, g);
   ASSERT_GT(expected.size(), 10u);
   EXPECT_EQ(selfIntersections(m.V, m.F), expected);
+
+  // Restricted to candidates: exactly the pairs with one of them, each once.
+  std::vector<int> candidates;
+  for (int f = 0; f < 200; f += 3) candidates.push_back(f);
+  Pairs withCandidate;
+  for (const auto& [f, g] : expected)
+    if (f % 3 == 0 || g % 3 == 0) withCandidate.emplace_back(f, g);
+  ASSERT_LT(withCandidate.size(), expected.size());
+  EXPECT_EQ(selfIntersections(m.V, m.F, candidates), withCandidate);
+  EXPECT_TRUE(selfIntersections(m.V, m.F, {}).empty());
+  EXPECT_THROW(selfIntersections(m.V, m.F, {200}), UsageError);
 }
 
 TEST(SelfIntersections, CoplanarOverlapAndSeparation) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace vesalius {
@@ -121,26 +122,34 @@ bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Ve
          segmentMeetsTriangle(b1, b2, a0, a1, a2) || segmentMeetsTriangle(b2, b0, a0, a1, a2);
 }
 
-std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F) {
-  if (F.rows() == 0) return {};
-  if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
-    throw BadInput("", "self-intersection test: a triangle index is outside the " + std::to_string(V.rows()) +
-                           " vertices");
-  std::vector<Eigen::AlignedBox3d> boxes(F.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    boxes[f].setEmpty();
-    for (int k = 0; k < 3; ++k) boxes[f].extend(V.row(F(f, k)).transpose());
+namespace {
+
+// The pairs with at least one triangle in `candidates`; `all` says that every triangle is one, so each
+// pair is tested once (from its smaller index) without a lookup.
+std::vector<std::pair<int, int>> crossingPairs(const MatrixX3d& V, const MatrixX3i& F,
+                                               const std::vector<int>& candidates, bool all) {
+  const std::vector<Eigen::AlignedBox3d> boxes = elementBoxes(V, F, "self-intersection test: a triangle");
+  if (boxes.empty() || candidates.empty()) return {};
+  std::vector<char> isCandidate(all ? 0 : boxes.size(), 0);
+  for (int f : candidates) {
+    if (f < 0 || f >= int(boxes.size()))
+      throw UsageError("self-intersection test: candidate triangle " + std::to_string(f) + " is not in the mesh");
+    if (!all) isCandidate[std::size_t(f)] = 1;
   }
   const BoxTree tree(boxes);
   const PairTest intersect(V, F);
   tbb::combinable<std::vector<std::pair<int, int>>> found;
-  tbb::parallel_for(tbb::blocked_range<int>(0, int(F.rows()), 256), [&](const tbb::blocked_range<int>& range) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
     auto& local = found.local();
-    for (int f = range.begin(); f < range.end(); ++f) {
+    for (std::size_t c = range.begin(); c < range.end(); ++c) {
+      const int f = candidates[c];
       // Every box overlapping box f lies within its half diagonal of its centre.
       const double radius2 = 0.25 * boxes[f].diagonal().squaredNorm();
       tree.near(boxes[f].center(), radius2, [&](int g) {
-        if (g > f && boxes[f].intersects(boxes[g]) && intersect(f, g)) local.emplace_back(f, g);
+        const bool bothCandidates = all || isCandidate[std::size_t(g)];
+        if (g != f && (!bothCandidates || g > f) && boxes[f].intersects(boxes[g]) && intersect(f, g))
+          local.emplace_back(std::min(f, g), std::max(f, g));
         return false;
       });
     }
@@ -149,6 +158,19 @@ std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const Mat
   found.combine_each([&](const auto& local) { pairs.insert(pairs.end(), local.begin(), local.end()); });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F) {
+  std::vector<int> every(std::size_t(F.rows()));
+  std::iota(every.begin(), every.end(), 0);
+  return crossingPairs(V, F, every, true);
+}
+
+std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F,
+                                                   const std::vector<int>& candidates) {
+  return crossingPairs(V, F, candidates, false);
 }
 
 }  // namespace vesalius

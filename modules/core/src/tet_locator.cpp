@@ -30,15 +30,7 @@ constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
 std::vector<Eigen::AlignedBox3d> tetBoxes(const MatrixX3d& V, const MatrixX4i& T) {
   if (T.rows() == 0) throw BadInput("", "tet locator: the mesh has no tetrahedra");
-  if (T.minCoeff() < 0 || T.maxCoeff() >= V.rows())
-    throw BadInput("", "tet locator: a tet index is outside the " + std::to_string(V.rows()) +
-                           " vertices");
-  std::vector<Eigen::AlignedBox3d> boxes(T.rows());
-  for (Eigen::Index t = 0; t < T.rows(); ++t) {
-    boxes[t].setEmpty();
-    for (int k = 0; k < 4; ++k) boxes[t].extend(V.row(T(t, k)).transpose());
-  }
-  return boxes;
+  return elementBoxes(V, T, "tet locator: a tet");
 }
 
 // Squared distance from p to the surface of tet t, and the weights of its closest point there.

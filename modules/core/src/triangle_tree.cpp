@@ -52,15 +52,7 @@ Eigen::Vector3d closestOnDegenerate(const Eigen::Vector3d& p, const Eigen::Vecto
 
 std::vector<Eigen::AlignedBox3d> triangleBoxes(const MatrixX3d& V, const MatrixX3i& F) {
   if (F.rows() == 0) throw BadInput("", "closest-point tree: the mesh has no triangles");
-  if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
-    throw BadInput("", "closest-point tree: a triangle index is outside the " +
-                           std::to_string(V.rows()) + " vertices");
-  std::vector<Eigen::AlignedBox3d> boxes(F.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    boxes[f].setEmpty();
-    for (int k = 0; k < 3; ++k) boxes[f].extend(V.row(F(f, k)).transpose());
-  }
-  return boxes;
+  return elementBoxes(V, F, "closest-point tree: a triangle");
 }
 
 }  // namespace

@@ -6,14 +6,31 @@
 // four elements; elements are the indices of the boxes given to the constructor.
 #pragma once
 
+#include "vesalius/core/error.h"
+
 #include <Eigen/Geometry>
 
 #include <array>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace vesalius {
+
+// One box per row of E (#E by k vertex indices into V, #V by 3): triangles or tets. Throws BadInput
+// "<what> index is outside the #V vertices" if E indexes outside V.
+template <class Elements>
+std::vector<Eigen::AlignedBox3d> elementBoxes(const Eigen::MatrixX3d& V, const Elements& E, const std::string& what) {
+  if (E.rows() > 0 && (E.minCoeff() < 0 || E.maxCoeff() >= V.rows()))
+    throw BadInput("", what + " index is outside the " + std::to_string(V.rows()) + " vertices");
+  std::vector<Eigen::AlignedBox3d> boxes(std::size_t(E.rows()));
+  for (Eigen::Index e = 0; e < E.rows(); ++e) {
+    boxes[std::size_t(e)].setEmpty();
+    for (Eigen::Index k = 0; k < E.cols(); ++k) boxes[std::size_t(e)].extend(V.row(E(e, k)).transpose());
+  }
+  return boxes;
+}
 
 class BoxTree {
  public:

@@ -27,6 +27,12 @@ namespace vesalius {
 // Throws BadInput if F indexes outside V.
 std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F);
 
+// The intersecting pairs with at least one triangle in `candidates` (indices into F), sorted: after a few
+// vertices moved on a surface that was clean, only the triangles around them need testing.
+// Throws UsageError if a candidate is not a row of F.
+std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F,
+                                                   const std::vector<int>& candidates);
+
 // Whether the closed triangles (a0, a1, a2) and (b0, b1, b2) meet, ignoring connectivity.
 bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
                         const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, const Eigen::Vector3d& b2);
