@@ -75,12 +75,10 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   std::vector<meshing::RegionSurface> regions;
   if (o.body > 0) {
-    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included, also
-    // where the scan's first or last slice cuts them: hence the axial fill) and the chosen labels (bones)
-    // are nested in it.
-    const segmentation::Mask solid = segmentation::fillHoles3d(segmentation::nonZeroMask(map.labels));
-    const LabelMap body = segmentation::labelMapOf(
-        segmentation::fillHolesSliceWise(solid, segmentation::axialAxis(solid.geometry)), {1, "body"});
+    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included) and
+    // the chosen labels (bones) are nested in it.
+    const LabelMap body =
+        segmentation::labelMapOf(segmentation::fillBodyHoles(segmentation::nonZeroMask(map.labels)), {1, "body"});
     regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels, holes filled)"});
     map.labels = insideBody(body.labels, map.labels);
   }

@@ -14,7 +14,7 @@ Mask segmentCtBody(const Image& ct, const CtTissueOptions& options) {
   if (countVoxels(body) == 0)
     throw BadInput("", "CT has no body: no voxel survives the threshold of " +
                            std::to_string(options.bodyMinHu) + " HU and the opening");
-  return fillHoles3d(fillHolesSliceWise(body, axialAxis(ct.geometry)));
+  return fillBodyHoles(body);
 }
 
 }  // namespace vesalius::segmentation

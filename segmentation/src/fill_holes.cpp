@@ -116,4 +116,6 @@ int axialAxis(const GridGeometry& geometry) {
   return best;
 }
 
+Mask fillBodyHoles(const Mask& body) { return fillHoles3d(fillHolesSliceWise(body, axialAxis(body.geometry))); }
+
 }  // namespace vesalius::segmentation

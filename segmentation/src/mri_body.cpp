@@ -16,7 +16,7 @@ Mask segmentMriBody(const Image& scan, const MriTissueOptions& options) {
   const Mask body =
       largestComponent(thresholdMask(smooth, level, std::numeric_limits<float>::infinity()));
   if (countVoxels(body) == 0) throw BadInput("", "MRI has no body: no voxel above the threshold");
-  return fillHoles3d(fillHolesSliceWise(body, axialAxis(scan.geometry)));
+  return fillBodyHoles(body);
 }
 
 }  // namespace vesalius::segmentation

@@ -91,6 +91,23 @@ TEST(LabelOps, ComponentsTouchingKeepsOnlySeededComponents) {
   EXPECT_EQ(countVoxels(componentsTouching(maskOr(a, b), seeds)), countVoxels(b));
 }
 
+TEST(LabelOps, BodyHolesAreFilledAlsoWhereTheLastSliceCutsThem) {
+  // A body filling the field of view along z, with an enclosed pocket and a tube of air along z
+  // open at the first and last slices (as bowel gas cut by the scan's ends): both are body.
+  const GridGeometry g = cube(20);
+  Mask body(g, 0);
+  for (int k = 0; k < 20; ++k)
+    for (int j = 2; j < 18; ++j)
+      for (int i = 2; i < 18; ++i) {
+        const bool pocket = i >= 5 && i < 8 && j >= 5 && j < 8 && k >= 8 && k < 11;
+        const bool tube = i >= 12 && i < 14 && j >= 12 && j < 14;
+        body.at(i, j, k) = !pocket && !tube;
+      }
+  const Mask solid = fillBodyHoles(body);
+  EXPECT_EQ(countVoxels(solid), 16 * 16 * 20);
+  EXPECT_EQ(countVoxels(fillHoles3d(body)), countVoxels(body) + 27);  // 3-D alone misses the tube
+}
+
 TEST(LabelOps, AxialAxisFollowsTheDirection) {
   GridGeometry g = cube(4);
   EXPECT_EQ(axialAxis(g), 2);

@@ -57,6 +57,9 @@ Mask fillHoles3d(const Mask& mask);
 // not the pelvic cavity that the bones of the pelvic ring enclose.
 Mask fillHolesSliceWise(const Mask& mask, int axis,
                         double maxHoleAreaMm2 = std::numeric_limits<double>::infinity());
+// A body made solid: holes filled in axial slices (so air cut open by the first or last slice, such as
+// bowel gas, is filled too), then in 3-D.
+Mask fillBodyHoles(const Mask& body);
 // The index axis whose world direction is closest to superior-inferior: slices normal to it are axial.
 int axialAxis(const GridGeometry& geometry);
 
