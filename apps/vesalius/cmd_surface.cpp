@@ -28,7 +28,7 @@ void runSurface(const SurfaceOptions& o) {
   const LabelMap map = io::readLabelMap(o.labels, o.table);
 
   std::vector<Label> ids;
-  for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
+  for (const std::string& s : o.selected) ids.push_back(resolveLabel(map, s, o.labels));
   // One label goes to --out as a file; several go into --out as a folder, one file per label name.
   const bool single = ids.size() == 1;
   if (!single) std::filesystem::create_directories(o.out);

@@ -1,5 +1,7 @@
 #include "common.h"
 
+#include "vesalius/core/error.h"
+
 namespace vesalius::cli {
 
 void CommonOptions::finish(const io::Report& report) const {
@@ -12,6 +14,14 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
       ->capture_default_str();
   command.add_flag("--force", options.force, "Replace output files that already exist");
   command.add_option("--report", options.report, "Write a JSON report (inputs, parameters, stage times, metrics)");
+}
+
+Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::string& labelsPath) {
+  try {
+    return map.table.resolve(idOrName);
+  } catch (const UsageError&) {
+    throw UsageError(labelsPath + ": no label '" + idOrName + "' (neither an id nor a name in its label table)");
+  }
 }
 
 }  // namespace vesalius::cli

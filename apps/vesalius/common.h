@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
+#include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
 #include "vesalius/io/report.h"
 
@@ -26,12 +27,18 @@ struct CommonOptions {
 // Adds --progress, --force and --report to a subcommand.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
 
+// A label chosen with --label: an id, or a name from the label table of the map read from `labelsPath`
+// (LabelTable::resolve: names case-insensitive). Throws UsageError naming `labelsPath` if it matches
+// nothing.
+Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::string& labelsPath);
+
 // Each subcommand registers itself on the top-level app.
 void addInfoCommand(CLI::App& app);
 void addMarkersCommand(CLI::App& app);
 void addSegmentCommand(CLI::App& app);
 void addSurfaceCommand(CLI::App& app);
 void addTetmeshCommand(CLI::App& app);
+void addFitCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 
 }  // namespace vesalius::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   vesalius::cli::addSurfaceCommand(app);
   vesalius::cli::addTetmeshCommand(app);
   vesalius::cli::addMarkersCommand(app);
+  vesalius::cli::addFitCommand(app);
   vesalius::cli::addDemoCommand(app);
 
   try {

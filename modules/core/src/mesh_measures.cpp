@@ -42,6 +42,13 @@ int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F) {
   return static_cast<int>(std::count(isRoot.begin(), isRoot.end(), true));
 }
 
+Eigen::VectorXd triangleAreas(const MatrixX3d& V, const MatrixX3i& F) {
+  Eigen::VectorXd area(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    area[f] = 0.5 * (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0))).norm();
+  return area;
+}
+
 double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F) {
   double sixTimesVolume = 0;
   for (Eigen::Index f = 0; f < F.rows(); ++f)

@@ -1,5 +1,5 @@
 // Measures of triangle surfaces used to check meshes everywhere: edge counts (is it a closed
-// 2-manifold?), connected components, enclosed volume.
+// 2-manifold?), connected components, triangle areas, enclosed volume.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -16,6 +16,9 @@ EdgeCounts countEdges(const MatrixX3i& F);
 
 // Components of triangles connected through shared vertices. V only gives the vertex count (#V).
 int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F);
+
+// Area of each triangle: #F, units of V squared.
+Eigen::VectorXd triangleAreas(const MatrixX3d& V, const MatrixX3i& F);
 
 // Signed volume enclosed by a closed surface, by the divergence theorem: sum over triangles of
 // a · (b × c) / 6. Positive for outward (counter-clockwise seen from outside) triangles; cavities count

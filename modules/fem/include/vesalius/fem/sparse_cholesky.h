@@ -1,0 +1,38 @@
+// Sparse symmetric positive-definite solves: factor once, solve many (CHOLMOD, supernodal).
+//
+// The fitter (seed 002 §3.4) factors the tangent stiffness once per iteration and solves for hundreds of
+// right-hand sides; posing and transfer factor a Laplacian once and solve one column per bone. Analyse
+// the pattern once, refactor numerically when only the values change, and solve blocks of columns at
+// once (CHOLMOD's supernodal solve uses BLAS-3 on a block).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <memory>
+
+namespace vesalius {
+
+class SparseCholesky {
+ public:
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(SparseCholesky&&) noexcept;
+  SparseCholesky& operator=(SparseCholesky&&) noexcept;
+
+  // A: #N by #N, symmetric (both triangles stored). Reuses the symbolic analysis when A has the pattern
+  // of the previous call. Throws NumericalFailure if A is not positive definite or is empty.
+  void factor(const Eigen::SparseMatrix<double>& A);
+
+  // B: #N by #K. Returns A⁻¹ B.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+
+  Eigen::Index size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vesalius

@@ -1,0 +1,135 @@
+// Benchmarks of the plastic-strain fitter (seed 002) on the SOFA liver template tetrahedralized at about
+// 35k tets (the paper's hand-muscle size) with 150 ICP markers:
+//   1. one search-direction solve, Woodbury (eq. 14) against conjugate gradients on the same H (Table 1);
+//   2. a whole fit from the placed template to markers on a known plastic deformation of it.
+// Each runs in a child process so that its peak memory is its own.
+#include "bench_support.h"
+
+#include "vesalius/fit/equilibrium_jacobian.h"
+#include "vesalius/fit/initial_placement.h"
+#include "vesalius/fit/plastic_fit.h"
+#include "vesalius/fit/plastic_laplacian.h"
+#include "vesalius/fit/surface_projection.h"
+#include "vesalius/fit/woodbury.h"
+
+#include "vesalius/fem/plastic_fem.h"
+#include "vesalius/fem/plastic_strain.h"
+#include "vesalius/fem/static_equilibrium.h"
+
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/meshing/surface_samples.h"
+#include "vesalius/meshing/tetrahedralize.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace vesalius;
+
+namespace {
+
+TetMesh liverTemplate() {
+  TriMesh surface = io::readTriMesh(VESALIUS_TESTDATA "/liver/liver.obj");
+  surface.V *= 25.0;  // the file's units are arbitrary; about 160 mm wide in mm
+  meshing::TetrahedralizeOptions options;
+  options.targetTets = 35000;
+  return meshing::tetrahedralize(surface, options, "liver.obj");
+}
+
+// The known deformation: a stretch up to 1.6 along an oblique axis growing across the organ, and a shear
+// varying along another (the ground-truth test's field).
+Eigen::VectorXd knownPlasticField(const TetMesh& m) {
+  const Eigen::Vector3d u = Eigen::Vector3d(1, 0.3, 0.2).normalized(), v(0, 1, 0), w(0, 0, 1);
+  const Eigen::RowVector3d lo = m.V.colwise().minCoeff(), size = m.V.colwise().maxCoeff() - lo;
+  Eigen::VectorXd s(6 * m.T.rows());
+  for (Eigen::Index t = 0; t < m.T.rows(); ++t) {
+    Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+    for (int i = 0; i < 4; ++i) c += m.V.row(m.T(t, i)) / 4;
+    const Eigen::RowVector3d q = (c - lo).cwiseQuotient(size);
+    s.segment<6>(6 * t) = plasticStrainParameters(Eigen::Matrix3d::Identity() + 0.6 * q.x() * u * u.transpose() +
+                                                  0.15 * std::sin(3.0 * q.z()) * (v * w.transpose() + w * v.transpose()));
+  }
+  return s;
+}
+
+struct Case {
+  TetMesh templ;
+  MatrixX3d markers;  // 150 points spread over the deformed surface
+};
+
+Case liverCase() {
+  Case c{liverTemplate(), {}};
+  const PlasticFem fem(c.templ.V, c.templ.T, StableNeoHookean::fromYoungPoisson(1.0, 0.45));
+  const MatrixX3d truth = PlasticFem::unflatten(
+      solveStaticEquilibrium(fem, knownPlasticField(c.templ), PointSprings{}, PlasticFem::flatten(c.templ.V)).x);
+  TriMesh surface;
+  surface.V = truth;
+  surface.F = tetBoundary(c.templ.T);
+  c.markers = meshing::spreadSurfacePoints(surface, 150, 1);
+  return c;
+}
+
+fit::Placement place(const Case& c) {
+  TriMesh surface;
+  surface.V = c.templ.V;
+  surface.F = tetBoundary(c.templ.T);
+  return fit::placeTemplate(surface, MatrixX3d(), MatrixX3d(), c.markers);
+}
+
+void searchDirection() {
+  const Case c = liverCase();
+  const fit::Placement p = place(c);
+  const Eigen::VectorXd x = PlasticFem::flatten(p.transform.apply(c.templ.V));
+  Eigen::VectorXd s(6 * c.templ.T.rows());
+  for (Eigen::Index t = 0; t < c.templ.T.rows(); ++t) s.segment<6>(6 * t) = p.transform.scale * identityPlasticStrain();
+  const PlasticFem fem(c.templ.V, c.templ.T, StableNeoHookean::fromYoungPoisson(1.0, 0.45));
+  const fit::SurfaceProjection surface(c.templ.T);
+  const auto active = surface.closestPoints(x, c.markers, 1e3);
+  const fit::RigidGauge gauge(active, c.templ.V, x);
+  SparseCholesky cholesky;
+  double prep = 0;
+  Eigen::MatrixXd Z;
+  prep = bench::seconds([&] {
+    const fit::EquilibriumJacobian J(fem.stiffness(x, s, true), fem.plasticForceJacobian(x, s), x, &gauge, cholesky);
+    Z = J.constraintJacobian(fit::constraintRows(active, fem.vertexCount()));
+  });
+  const Eigen::SparseMatrix<double> Lsc = fit::tetAdjacencyLaplacian(c.templ.T);
+  const Eigen::VectorXd h = -(Z.transpose() * fit::constraintResiduals(active, x));
+  Eigen::VectorXd yWoodbury;
+  const double tWoodbury = bench::seconds([&] {
+    const fit::SmoothnessBaseSolver base(Lsc);
+    yWoodbury = fit::WoodburySolver(base, Z).solve(Eigen::MatrixXd(h)).col(0);
+  });
+  fit::ConjugateGradientResult cg;
+  const double tCg = bench::seconds([&] { cg = fit::solveConjugateGradient(Lsc, Z, h, 1e-6, 20000); });
+  std::printf("| one search direction, %ld tets (6#T = %ld), %ld constraint rows | %.1f s | %.1f s (%d iterations, "
+              "residual %.1e, %.1e from Woodbury's) | %.2f s | %.0f× |",
+              long(c.templ.T.rows()), long(6 * c.templ.T.rows()), long(Z.rows()), prep, tCg, cg.iterations,
+              cg.relativeResidual, (cg.y - yWoodbury).norm() / yWoodbury.norm(), tWoodbury, tCg / tWoodbury);
+}
+
+void wholeFit() {
+  const Case c = liverCase();
+  const fit::Placement p = place(c);
+  Eigen::VectorXd s0(6 * c.templ.T.rows());
+  for (Eigen::Index t = 0; t < c.templ.T.rows(); ++t) s0.segment<6>(6 * t) = p.transform.scale * identityPlasticStrain();
+  fit::FitMarkers markers;
+  markers.icp = c.markers;
+  const fit::SurfaceProjection surface(c.templ.T);
+  const Eigen::VectorXd before = surface.distances(PlasticFem::flatten(p.transform.apply(c.templ.V)), c.markers);
+  fit::FitResult r;
+  const double t = bench::seconds([&] { r = fit::fitPlasticStrains(c.templ, p.transform.apply(c.templ.V), s0, markers); });
+  std::printf("| whole fit, %ld tets, %ld ICP markers | %zu iterations | ICP error %.2f / %.2f mm -> %.3f / %.3f mm "
+              "| %.1f s |",
+              long(c.templ.T.rows()), long(c.markers.rows()), r.history.size(), before.mean(), before.maxCoeff(),
+              r.icpErrors.mean(), r.icpErrors.maxCoeff(), t);
+}
+
+}  // namespace
+
+int main() {
+  std::printf("| run | Z (prep) | conjugate gradients | Woodbury | ratio | peak memory |\n|---|---|---|---|---|---|\n");
+  bench::inChild(searchDirection);
+  std::printf("\n| run | iterations | marker error (mean / max) | time | peak memory |\n|---|---|---|---|---|\n");
+  bench::inChild(wholeFit);
+  return 0;
+}
