@@ -4,6 +4,7 @@
 //   2. a whole fit from the placed template to markers on a known plastic deformation of it.
 // Each runs in a child process so that its peak memory is its own.
 #include "bench_support.h"
+#include "test_plastic_fields.h"
 
 #include "vesalius/fit/equilibrium_jacobian.h"
 #include "vesalius/fit/initial_placement.h"
@@ -35,22 +36,6 @@ TetMesh liverTemplate() {
   return meshing::tetrahedralize(surface, options, "liver.obj");
 }
 
-// The known deformation: a stretch up to 1.6 along an oblique axis growing across the organ, and a shear
-// varying along another (the ground-truth test's field).
-Eigen::VectorXd knownPlasticField(const TetMesh& m) {
-  const Eigen::Vector3d u = Eigen::Vector3d(1, 0.3, 0.2).normalized(), v(0, 1, 0), w(0, 0, 1);
-  const Eigen::RowVector3d lo = m.V.colwise().minCoeff(), size = m.V.colwise().maxCoeff() - lo;
-  Eigen::VectorXd s(6 * m.T.rows());
-  for (Eigen::Index t = 0; t < m.T.rows(); ++t) {
-    Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
-    for (int i = 0; i < 4; ++i) c += m.V.row(m.T(t, i)) / 4;
-    const Eigen::RowVector3d q = (c - lo).cwiseQuotient(size);
-    s.segment<6>(6 * t) = plasticStrainParameters(Eigen::Matrix3d::Identity() + 0.6 * q.x() * u * u.transpose() +
-                                                  0.15 * std::sin(3.0 * q.z()) * (v * w.transpose() + w * v.transpose()));
-  }
-  return s;
-}
-
 struct Case {
   TetMesh templ;
   MatrixX3d markers;  // 150 points spread over the deformed surface
@@ -60,7 +45,7 @@ Case liverCase() {
   Case c{liverTemplate(), {}};
   const PlasticFem fem(c.templ.V, c.templ.T, StableNeoHookean::fromYoungPoisson(1.0, 0.45));
   const MatrixX3d truth = PlasticFem::unflatten(
-      solveStaticEquilibrium(fem, knownPlasticField(c.templ), PointSprings{}, PlasticFem::flatten(c.templ.V)).x);
+      solveStaticEquilibrium(fem, test::knownPlasticField(c.templ), PointSprings{}, PlasticFem::flatten(c.templ.V)).x);
   TriMesh surface;
   surface.V = truth;
   surface.F = tetBoundary(c.templ.T);

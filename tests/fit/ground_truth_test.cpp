@@ -10,6 +10,8 @@
 
 #include "vesalius/io/mesh_io.h"
 
+#include "test_plastic_fields.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,28 +27,10 @@ TetMesh liverTemplate() {
   return m;
 }
 
-// Fp(X) = I + a(X) u uᵀ + b(X) (v wᵀ + w vᵀ): a stretch up to 1.6 along one oblique axis growing
-// across the organ, and a shear that varies along another.
-Eigen::VectorXd truePlasticField(const TetMesh& m) {
-  const Eigen::Vector3d u = Eigen::Vector3d(1, 0.3, 0.2).normalized(), v = Eigen::Vector3d(0, 1, 0),
-                        w = Eigen::Vector3d(0, 0, 1);
-  const Eigen::RowVector3d lo = m.V.colwise().minCoeff(), size = m.V.colwise().maxCoeff() - lo;
-  Eigen::VectorXd s(6 * m.T.rows());
-  for (Eigen::Index t = 0; t < m.T.rows(); ++t) {
-    Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
-    for (int i = 0; i < 4; ++i) c += m.V.row(m.T(t, i)) / 4;
-    const Eigen::RowVector3d q = (c - lo).cwiseQuotient(size);
-    const double a = 0.6 * q.x(), b = 0.15 * std::sin(3.0 * q.z());
-    s.segment<6>(6 * t) = plasticStrainParameters(Eigen::Matrix3d::Identity() + a * u * u.transpose() +
-                                                  b * (v * w.transpose() + w * v.transpose()));
-  }
-  return s;
-}
-
 TEST(PlasticFitGroundTruth, RecoversShapeAndPlasticFieldOfAKnownDeformation) {
   const TetMesh templ = liverTemplate();
   const PlasticFem fem(templ.V, templ.T, StableNeoHookean::fromYoungPoisson(1.0, 0.45));
-  const Eigen::VectorXd sTrue = truePlasticField(templ);
+  const Eigen::VectorXd sTrue = test::knownPlasticField(templ);
   const MatrixX3d truth =
       PlasticFem::unflatten(solveStaticEquilibrium(fem, sTrue, PointSprings{}, PlasticFem::flatten(templ.V)).x);
 
