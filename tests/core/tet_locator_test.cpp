@@ -3,6 +3,8 @@
 #include "vesalius/core/tet_locator.h"
 #include "vesalius/core/triangle_tree.h"
 
+#include "test_tets.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -23,36 +25,13 @@ double signedVolume(const MatrixX3d& V, const Eigen::Vector4i& t) {
              .dot((V.row(t[2]).transpose() - a).cross(V.row(t[3]).transpose() - a)) / 6.0;
 }
 
-// n^3 cubes, each split into the six Kuhn tets (one per axis order, all sharing the main diagonal), so
-// neighbouring cubes match face to face. Interior vertices are jittered; the boundary stays the cube.
+// n^3 cubes of six Kuhn tets each (test_tets.h). Interior vertices are jittered after orienting, so that
+// a tet turned inside out would show as a negative volume; the boundary stays the cube.
 TetMesh kuhnGrid(int n, double jitter, std::mt19937& rng) {
-  TetMesh m;
+  TetMesh m = test::boxTets(n, n, n, kSide / n);
   const int nv = n + 1;
-  const double h = kSide / n;
-  std::uniform_real_distribution<double> u(-jitter * h, jitter * h);
-  m.V.resize(nv * nv * nv, 3);
+  std::uniform_real_distribution<double> u(-jitter * kSide / n, jitter * kSide / n);
   auto id = [nv](int i, int j, int k) { return i + nv * (j + nv * k); };
-  for (int k = 0; k < nv; ++k)
-    for (int j = 0; j < nv; ++j)
-      for (int i = 0; i < nv; ++i) m.V.row(id(i, j, k)) << i * h, j * h, k * h;
-  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  m.T.resize(6 * n * n * n, 4);
-  int row = 0;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& order : orders) {
-          Eigen::Vector3i c(i, j, k);
-          Eigen::Vector4i t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            c[order[s]] += 1;
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          if (signedVolume(m.V, t) < 0) std::swap(t[2], t[3]);
-          m.T.row(row++) = t.transpose();
-        }
-  // Jitter after orienting, so that a tet turned inside out would show as a negative volume.
   for (int k = 1; k < n; ++k)
     for (int j = 1; j < n; ++j)
       for (int i = 1; i < n; ++i) m.V.row(id(i, j, k)) += Eigen::RowVector3d(u(rng), u(rng), u(rng));

@@ -1,8 +1,11 @@
-// Shared by the fem tests: box tet meshes, random plastic strains, and central finite differences.
+// Shared by the fem tests: random plastic strains and central finite differences (box tet meshes come from
+// test_tets.h).
 #pragma once
 
 #include "vesalius/core/mesh.h"
 #include "vesalius/fem/plastic_strain.h"
+
+#include "test_tets.h"
 
 #include <gtest/gtest.h>
 
@@ -13,40 +16,6 @@
 #include <vector>
 
 namespace vesalius::test {
-
-// nx by ny by nz cubes of edge h from the origin, each split into the 6 tets around its main diagonal
-// (Freudenthal/Kuhn: conforming across cubes), positively oriented. Vertex (i, j, k) is row
-// i + (nx + 1) (j + (ny + 1) k).
-inline TetMesh boxTetMesh(int nx, int ny, int nz, double h) {
-  TetMesh m;
-  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
-  m.V.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.V.row(id(i, j, k)) << i * h, j * h, k * h;
-  const std::array<std::array<int, 3>, 6> orders{
-      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  std::vector<Eigen::Vector4i> tets;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const auto& order : orders) {
-          std::array<int, 3> p{i, j, k};
-          Eigen::Vector4i t;
-          t[0] = id(p[0], p[1], p[2]);
-          for (int c = 0; c < 3; ++c) {
-            ++p[order[c]];
-            t[c + 1] = id(p[0], p[1], p[2]);
-          }
-          tets.push_back(t);
-        }
-  m.T.resize(Eigen::Index(tets.size()), 4);
-  for (std::size_t t = 0; t < tets.size(); ++t) m.T.row(Eigen::Index(t)) = tets[t].transpose();
-  const Eigen::VectorXd volume = tetVolumes(m.V, m.T);
-  for (Eigen::Index t = 0; t < m.T.rows(); ++t)
-    if (volume[t] < 0) std::swap(m.T(t, 2), m.T(t, 3));
-  return m;
-}
 
 // Symmetric positive definite Fp near `centre` (eigenvalues stay well above zero for spread < 0.3).
 inline Vector6d randomPlasticStrain(std::mt19937& rng, const Eigen::Matrix3d& centre, double spread) {

@@ -18,7 +18,7 @@ const StableNeoHookean kMaterial = StableNeoHookean::fromYoungPoisson(10.0, 0.45
 // A 2x2x2-cube box of 5 mm cubes (48 tets) with jittered vertices, random SPD plastic strains, and a
 // deformed state that is the plastic-free template sheared, stretched and jittered.
 struct Scene {
-  TetMesh mesh = test::boxTetMesh(2, 2, 2, 5.0);
+  TetMesh mesh = test::boxTets(2, 2, 2, 5.0);
   Eigen::VectorXd s, x;
   Scene() {
     std::mt19937 rng(11);
@@ -111,17 +111,17 @@ TEST(PlasticFem, SizesVolumesAndFlattening) {
 }
 
 TEST(PlasticFem, RefusesInvertedTetsAndBadIndices) {
-  TetMesh mesh = test::boxTetMesh(1, 1, 1, 1.0);
+  TetMesh mesh = test::boxTets(1, 1, 1, 1.0);
   std::swap(mesh.T(3, 0), mesh.T(3, 1));
   EXPECT_THROW(PlasticFem(mesh.V, mesh.T, kMaterial), BadInput);
-  mesh = test::boxTetMesh(1, 1, 1, 1.0);
+  mesh = test::boxTets(1, 1, 1, 1.0);
   mesh.T(2, 2) = 8;
   EXPECT_THROW(PlasticFem(mesh.V, mesh.T, kMaterial), BadInput);
-  mesh = test::boxTetMesh(1, 1, 1, 1.0);
+  mesh = test::boxTets(1, 1, 1, 1.0);
   mesh.V.row(mesh.T(0, 3)) = mesh.V.row(mesh.T(0, 2));  // flattens tet 0
   EXPECT_THROW(PlasticFem(mesh.V, mesh.T, kMaterial), BadInput);
   EXPECT_THROW(PlasticFem(mesh.V, MatrixX4i(0, 4), kMaterial), BadInput);
-  EXPECT_THROW(PlasticFem(test::boxTetMesh(1, 1, 1, 1.0).V, mesh.T, StableNeoHookean{0, 1}), BadInput);
+  EXPECT_THROW(PlasticFem(test::boxTets(1, 1, 1, 1.0).V, mesh.T, StableNeoHookean{0, 1}), BadInput);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ using test::centralDifferences;
 using test::expectRelativeError;
 
 struct Scene {
-  TetMesh mesh = test::boxTetMesh(2, 1, 1, 4.0);
+  TetMesh mesh = test::boxTets(2, 1, 1, 4.0);
   PointSprings springs;
   Eigen::VectorXd x;
   Scene() {

@@ -53,7 +53,7 @@ double totalResidual(const PlasticFem& fem, const Eigen::VectorXd& s, const Poin
 // No springs: the body is free to take its plastic rest shape, which here is exactly reachable (the
 // template stretched 2x along x), so the equilibrium has zero energy and doubled x edges.
 TEST(StaticEquilibrium, UnattachedBodyReachesItsPlasticRestShape) {
-  const TetMesh mesh = test::boxTetMesh(2, 2, 2, kCell);
+  const TetMesh mesh = test::boxTets(2, 2, 2, kCell);
   const PlasticFem fem(mesh.V, mesh.T, kMaterial);
   const Eigen::VectorXd s = uniformStrain(fem, {2, 1, 1});
   const EquilibriumResult r = solveStaticEquilibrium(fem, s, PointSprings{}, PlasticFem::flatten(mesh.V));
@@ -79,7 +79,7 @@ TEST(StaticEquilibrium, UnattachedBodyReachesItsPlasticRestShape) {
 
 // A 40 mm beam held at x = 0 and plastically stretched 1.5x along x: its free end moves 20 mm.
 TEST(StaticEquilibrium, AttachedBeamStretchesWithItsPlasticStrain) {
-  const TetMesh mesh = test::boxTetMesh(8, 2, 2, kCell);
+  const TetMesh mesh = test::boxTets(8, 2, 2, kCell);
   const PlasticFem fem(mesh.V, mesh.T, kMaterial);
   const PointSprings springs = clampedEnd(mesh);
   const Eigen::VectorXd s = uniformStrain(fem, {1.5, 1, 1});
@@ -98,7 +98,7 @@ TEST(StaticEquilibrium, AttachedBeamStretchesWithItsPlasticStrain) {
 
 // Identity plastic strain, the far end pulled 12 mm: an elastic stretch in equilibrium with the springs.
 TEST(StaticEquilibrium, SpringDrivenStretchConverges) {
-  const TetMesh mesh = test::boxTetMesh(8, 2, 2, kCell);
+  const TetMesh mesh = test::boxTets(8, 2, 2, kCell);
   const PlasticFem fem(mesh.V, mesh.T, kMaterial);
   const double length = 8 * kCell;
   const PointSprings springs = vertexSprings(
@@ -131,7 +131,7 @@ TEST(StaticEquilibrium, SpringDrivenStretchConverges) {
 // Plastic stretch growing across the beam bends it; elements keep residual stress, the case where the
 // exact stiffness takes over from the projected one near the solution.
 TEST(StaticEquilibrium, InconsistentPlasticStrainsBendTheBeam) {
-  const TetMesh mesh = test::boxTetMesh(10, 2, 2, kCell);
+  const TetMesh mesh = test::boxTets(10, 2, 2, kCell);
   const PlasticFem fem(mesh.V, mesh.T, kMaterial);
   Eigen::VectorXd s(6 * fem.tetCount());
   for (int t = 0; t < fem.tetCount(); ++t) {
@@ -159,7 +159,7 @@ TEST(StaticEquilibrium, InconsistentPlasticStrainsBendTheBeam) {
 }
 
 TEST(StaticEquilibrium, RefusesSingularPlasticStrainsAndInvertedStarts) {
-  const TetMesh mesh = test::boxTetMesh(2, 1, 1, kCell);
+  const TetMesh mesh = test::boxTets(2, 1, 1, kCell);
   const PlasticFem fem(mesh.V, mesh.T, kMaterial);
   const Eigen::VectorXd rest = PlasticFem::flatten(mesh.V);
   Eigen::VectorXd s = uniformStrain(fem, {1, 1, 1});
