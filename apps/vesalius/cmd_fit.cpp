@@ -628,6 +628,14 @@ void addFitCommand(CLI::App& app) {
   cmd->add_option("--max-icp-error", o->solver.maxIcpError, "The ICP stage stops when every marker is this close (mm)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--marker-weight", o->solver.markerWeight,
+                  "alpha of seed 002 eq. 3 per mm^2: higher meets the markers more closely, lower keeps Fp smoother")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--attachment-weight", o->solver.attachmentWeight,
+                  "beta of seed 002 eq. 3 per mm^2: how much the attachments' elastic work counts")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--target-tets", o->targetTets, "About this many tets for a surface template")
       ->check(CLI::Range(100L, 10000000L))
       ->capture_default_str();

@@ -34,12 +34,10 @@ struct Objective {
 };
 
 void checkStart(const PlasticFem& fem, const Eigen::VectorXd& s, const Eigen::VectorXd& x0) {
-  const Eigen::VectorXd J = fem.elasticJacobians(x0, s);  // checks the sizes
-  for (int t = 0; t < fem.tetCount(); ++t) {
+  fem.elasticJacobians(x0, s);  // checks the sizes
+  for (int t = 0; t < fem.tetCount(); ++t)
     if (!(plasticStrainMatrix(s.segment<6>(6 * t)).determinant() > 0))
       throw BadInput("", "static equilibrium: the plastic strain of tet " + std::to_string(t) + " has det <= 0");
-    if (!(J[t] > 0)) throw BadInput("", "static equilibrium: the start shape inverts tet " + std::to_string(t));
-  }
 }
 
 struct Step {
@@ -47,14 +45,15 @@ struct Step {
   double energy, length;  // length: the line-search factor taken
 };
 
-// Backtracking from the full step d; nothing if every tried step inverts a tet or fails Armijo.
+// Backtracking from the full step d; nothing if every tried step fails Armijo. Steps may invert tets: the
+// stable neo-Hookean energy is defined and rises there, so Newton passes through a nearly flat tet
+// instead of being trapped in front of it, as a barrier on J = 0 would leave it.
 std::optional<Step> lineSearch(const Objective& f, const Eigen::VectorXd& x, double energy,
                                const Eigen::VectorXd& g, const Eigen::VectorXd& d) {
   const double slope = g.dot(d);
   if (!(slope < 0)) return std::nullopt;
   for (double a = 1; a >= std::ldexp(1.0, -kHalvings); a /= 2) {
     Eigen::VectorXd trial = x + a * d;
-    if (!(f.fem.elasticJacobians(trial, f.s).minCoeff() > 0)) continue;
     const double e = f.energy(trial);
     if (e <= energy + kArmijo * a * slope + kEnergyRoundOff * std::abs(energy))
       return Step{std::move(trial), e, a};

@@ -63,6 +63,21 @@ double relativeChange(const Eigen::VectorXd& s, const Eigen::VectorXd& ds) {
   return largest;
 }
 
+// The fit runs in a material space scaled by c = (volume-weighted mean det Fp(s0))^(1/3), where the
+// starting plastic strains are about I. The smoothness ½||L s||² and the eigenvalue floor are absolute
+// in s, so a template in other units (the SOFA liver is in units of about 35 mm) or scaled by its
+// placement would otherwise weigh smoothness by c² against the markers and floor the stretches at 0.01 c.
+double materialScale(const TetMesh& templ, const Eigen::VectorXd& s0) {
+  if (s0.size() != 6 * templ.T.rows()) throw UsageError("fit: starting plastic parameters do not match the template");
+  const Eigen::VectorXd V0 = tetVolumes(templ.V, templ.T);
+  double placed = 0;
+  for (Eigen::Index t = 0; t < templ.T.rows(); ++t)
+    placed += V0[t] * plasticStrainMatrix(s0.segment<6>(6 * t)).determinant();
+  const double c = std::cbrt(placed / V0.sum());
+  if (!(c > 0) || !std::isfinite(c)) throw BadInput("", "fit: the starting plastic strains have no positive volume");
+  return c;
+}
+
 class Fitter {
  public:
   Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd& s0, const FitMarkers& markers,
@@ -83,16 +98,22 @@ class Fitter {
     Eigen::VectorXd s, x;
   };
   static constexpr int kDampingAttempts = 8;
-  static constexpr double kMinDamping = 1e-9, kStartDamping = 1e-3;
+  static constexpr double kMinDamping = 1e-9, kStartDamping = 1e-3, kMaxDamping = 1e12;
 
   Linearization linearize(const Stage& stage);
   Eigen::VectorXd direction(const Stage& stage, Linearization& lin, double mu) const;
+  Eigen::VectorXd boundedDirection(const Stage& stage, Linearization& lin);
+  Eigen::VectorXd firstDirection(const Stage& stage, Linearization& lin);
+  Eigen::VectorXd field(const Stage& stage, const Eigen::VectorXd& d) const;
+  double longestStep(const Stage& stage, const Eigen::VectorXd& d) const;
+  double model(const Stage& stage, const Linearization& lin, const Eigen::VectorXd& d, double eta) const;
   std::optional<Trial> lineSearch(const Stage& stage, const Linearization& lin, const Eigen::VectorXd& d);
   std::optional<FitIteration> iterate(const Stage& stage);
   void realign(Markers which);
   void recordErrors(FitIteration& record) const;
   FitResult result(std::vector<FitIteration> history) const;
 
+  const double scale_;  // c: the material space is the template's times c, s is Fp / c
   const MatrixX3d restV_;
   const MatrixX4i T_;
   const FitMarkers markers_;
@@ -113,19 +134,18 @@ class Fitter {
 
 Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd& s0, const FitMarkers& markers,
                const FitOptions& options)
-    : restV_(templ.V), T_(templ.T), markers_(markers), options_(options),
-      fem_(templ.V, templ.T, StableNeoHookean::fromYoungPoisson(1.0, options.poissonRatio)),
+    : scale_(materialScale(templ, s0)), restV_(scale_ * templ.V), T_(templ.T), markers_(markers),
+      options_(options), fem_(restV_, templ.T, StableNeoHookean::fromYoungPoisson(1.0, options.poissonRatio)),
       surface_(templ.T), Lsc_(tetAdjacencyLaplacian(templ.T)), base_(Lsc_),
       springStiffness_(attachmentSpringStiffness(fem_, options.attachmentStiffness, markers.attachmentMaterial.rows())),
-      x_(PlasticFem::flatten(x0)), s_(s0), attached_(markers.attachmentMaterial.rows() > 0) {
-  if (x0.rows() != templ.V.rows() || s0.size() != 6 * templ.T.rows())
-    throw UsageError("fit: starting positions or plastic parameters do not match the template");
+      x_(PlasticFem::flatten(x0)), s_(s0 / scale_), attached_(markers.attachmentMaterial.rows() > 0) {
+  if (x0.rows() != templ.V.rows()) throw UsageError("fit: starting positions do not match the template");
   if (attached_) {
-    attachments_ = embedMaterialPoints(templ.V, templ.T, markers.attachmentMaterial, markers.attachmentTargets,
+    attachments_ = embedMaterialPoints(restV_, templ.T, scale_ * markers.attachmentMaterial, markers.attachmentTargets,
                                        options.attachmentWeight);
     springs_ = asSprings(attachments_, springStiffness_);
   }
-  landmarks_ = embedMaterialPoints(templ.V, templ.T, markers.templateLandmarks, markers.scanLandmarks,
+  landmarks_ = embedMaterialPoints(restV_, templ.T, scale_ * markers.templateLandmarks, markers.scanLandmarks,
                                    options.markerWeight);
   std::vector<Eigen::Triplet<double>> e;
   for (Eigen::Index t = 0; t < T_.rows(); ++t)
@@ -158,6 +178,8 @@ Eigen::VectorXd Fitter::equilibrium(const Eigen::VectorXd& s, const Eigen::Vecto
                                     const RigidGauge* gauge) const {
   const EquilibriumResult r = solveStaticEquilibrium(fem_, s, springs_, start, EquilibriumOptions{});
   if (!r.converged) throw NumericalFailure("fit: the elastic equilibrium did not converge");
+  if (!(fem_.elasticJacobians(r.x, s).minCoeff() > 0))
+    throw NumericalFailure("fit: the elastic equilibrium inverts a tet");
   return gauge ? gauge->impose(r.x) : r.x;
 }
 
@@ -219,14 +241,52 @@ Eigen::VectorXd Fitter::direction(const Stage& stage, Linearization& lin, double
   return lin.woodbury->solve(-lin.gradient).col(0);
 }
 
+// The damped direction with λ raised (and kept) until its full step changes no tet's plastic parameters by more
+// than maxStrainChange of their size: a trust region on Fp. The undamped Gauss-Newton step of a template
+// far from its markers asks for stretches of several hundred percent in a few tets, where neither the
+// linear model nor the equilibrium solve can follow; the damped one is smoother (D ⊇ L²) and shorter.
+Eigen::VectorXd Fitter::boundedDirection(const Stage& stage, Linearization& lin) {
+  for (;;) {
+    Eigen::VectorXd d = direction(stage, lin, damping_ * lin.dampingScale);
+    const double change = relativeChange(s_, field(stage, d));
+    if (change <= options_.maxStrainChange || damping_ >= kMaxDamping) return d;
+    damping_ *= std::max(2.0, change / options_.maxStrainChange);
+  }
+}
+
+// A stage's direction as a change of all 6#T plastic parameters.
+Eigen::VectorXd Fitter::field(const Stage& stage, const Eigen::VectorXd& d) const {
+  return stage.constantStrain ? Eigen::VectorXd(constantMap_ * d) : d;
+}
+
+// The strain-change bound on η along d, at most 1.
+double Fitter::longestStep(const Stage& stage, const Eigen::VectorXd& d) const {
+  return std::min(1.0, options_.maxStrainChange / relativeChange(s_, field(stage, d)));
+}
+
+// The objective the linearization predicts at s + η d.
+double Fitter::model(const Stage& stage, const Linearization& lin, const Eigen::VectorXd& d, double eta) const {
+  const Eigen::VectorXd ds = field(stage, d);
+  return 0.5 * (lin.r + eta * (lin.Z * d)).squaredNorm() + smoothness(s_ + eta * ds);
+}
+
+// The first direction tried. ICP markers are re-projected onto the surface as it moves, so their linear
+// model holds only near x: the damped direction that meets the strain bound at full length (a trust
+// region) takes the SOFA liver to 2.1 mm mean marker error on the CT, where Gauss-Newton stalls at 5.7. Landmarks
+// and attachments keep their material points, and thin parts that must stretch several-fold (the string
+// of Fig. 23) need the Gauss-Newton direction, shortened to the bound by the line search.
+Eigen::VectorXd Fitter::firstDirection(const Stage& stage, Linearization& lin) {
+  if (stage.markers == Markers::Icp) return boundedDirection(stage, lin);
+  return direction(stage, lin, damping_ * lin.dampingScale);
+}
+
 // Brent's line search along d (§3.4), each trial re-solving the equilibrium. The full step (shortened
 // so that no plastic parameter changes by more than maxStrainChange) is tried first and kept when it
 // realises at least half the decrease the linear model predicts. Nothing if no trial improves.
 std::optional<Fitter::Trial> Fitter::lineSearch(const Stage& stage, const Linearization& lin,
                                                 const Eigen::VectorXd& d) {
-  const Eigen::VectorXd ds = stage.constantStrain ? Eigen::VectorXd(constantMap_ * d) : d;
+  const Eigen::VectorXd ds = field(stage, d);
   const Eigen::VectorXd predicted = lin.J->apply(d);
-  const Eigen::VectorXd Zd = lin.Z * d;
   std::optional<Trial> best;
   const auto trial = [&](double eta) {
     if (eta <= 0.0) return lin.f0;
@@ -243,10 +303,9 @@ std::optional<Fitter::Trial> Fitter::lineSearch(const Stage& stage, const Linear
       return std::numeric_limits<double>::max();
     }
   };
-  const double etaMax = std::min(1.0, options_.maxStrainChange / relativeChange(s_, ds));
+  const double etaMax = longestStep(stage, d);
   const double f1 = trial(etaMax);
-  const double model1 = 0.5 * (lin.r + etaMax * Zd).squaredNorm() + smoothness(s_ + etaMax * ds);
-  if (!(lin.f0 - f1 >= 0.5 * (lin.f0 - model1)))
+  if (!(lin.f0 - f1 >= 0.5 * (lin.f0 - model(stage, lin, d, etaMax))))
     minimizeBrent(trial, 0.0, etaMax, 1e-3 * etaMax, options_.lineSearchEvaluations - 1);
   return best;
 }
@@ -259,7 +318,7 @@ std::optional<FitIteration> Fitter::iterate(const Stage& stage) {
   Linearization lin = linearize(stage);
   std::optional<Trial> accepted;
   for (int attempt = 0; attempt < kDampingAttempts && !accepted; ++attempt) {
-    accepted = lineSearch(stage, lin, direction(stage, lin, damping_ * lin.dampingScale));
+    accepted = lineSearch(stage, lin, attempt == 0 ? firstDirection(stage, lin) : boundedDirection(stage, lin));
     if (!accepted) damping_ *= 10;
   }
   if (!accepted) return std::nullopt;
@@ -338,7 +397,7 @@ FitResult Fitter::result(std::vector<FitIteration> history) const {
   result.attached = attached_;
   result.history = std::move(history);
   result.V = PlasticFem::unflatten(x_);
-  result.s = s_;
+  result.s = scale_ * s_;
   result.icpErrors = surface_.distances(x_, markers_.icp);
   result.landmarkErrors.resize(Eigen::Index(landmarks_.size()));
   for (std::size_t k = 0; k < landmarks_.size(); ++k)

@@ -2,9 +2,9 @@
 //   f_e(Fp(s), x) + f_a(x) = 0   (seed 002 §3.3, eq. 4; eq. 7 with f_net),
 // i.e. a stationary point of E_total(x) = E(s, x) + E_a(x), found by minimizing E_total.
 //
-// Newton's method with a backtracking (Armijo) line search on E_total that also rejects steps inverting a
-// tet relative to its plastic rest shape. The Newton matrix is the PSD-projected stiffness plus the spring
-// Hessian, which descends from anywhere; after a full step it switches to the exact stiffness for as long as
+// Newton's method with a backtracking (Armijo) line search on E_total. Tets may invert on the way (Smith
+// et al.'s energy is built for it); the caller decides whether an inverted equilibrium is acceptable.
+// The Newton matrix is the PSD-projected stiffness plus the spring Hessian, which descends from anywhere; after a full step it switches to the exact stiffness for as long as
 // that stays positive definite and its steps are accepted, which restores quadratic convergence where
 // elements keep residual stress (inconsistent plastic strains). Both carry Levenberg-Marquardt damping
 // ν·d·I (d = mean diagonal; ν ÷10 after a full step, ×10 when no step is found, from 1e-9 to 1e8), which
@@ -35,7 +35,7 @@ struct EquilibriumResult {
 double equilibriumForceScale(const PlasticFem& fem);
 
 // s: 6#T plastic strains, used as given; every Fp must have det > 0 (else BadInput). x0: 3#V start
-// positions, no tet inverted relative to its plastic rest shape (else BadInput). springs may be empty.
+// positions, inverted tets allowed. springs may be empty.
 // Throws NumericalFailure when no descent step is found even at the largest damping, or on non-finite
 // values.
 EquilibriumResult solveStaticEquilibrium(const PlasticFem& fem, const Eigen::VectorXd& s,

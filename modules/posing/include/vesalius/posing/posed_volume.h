@@ -1,0 +1,46 @@
+// Re-posing a scan or a label map with its tet mesh (seed 001 §5, Fig. 11: "we determine the pixels inside
+// each tetrahedron in the deformed configuration and then, they are mapped back to the non-deformed
+// configuration using the inverse of the displacement field ... we iterate over each tetrahedron's bounding
+// box and we use the barycentric coordinates to identify the pixels inside the tetrahedron").
+//
+// Each posed tet is rasterized over the output voxel centres in its bounding box. A centre with barycentric
+// coordinates λ in the posed tet (all λ >= 0) is the point Σ λ_a restV_a of the rest tet, the inverse of
+// the piecewise affine displacement field, and takes the input's value there: nearest voxel for labels
+// (no new labels appear at boundaries), trilinear for intensities. A rest point outside the input grid
+// (beyond half a voxel from its edge voxel centres) and a centre covered by no posed tet get the background.
+//
+// Where posed tets overlap (a fold, or a centre on a shared face) the tet with the lowest index wins, so
+// the result does not depend on the thread count: the output is cut into z-slabs, each slab is filled by
+// one task, which visits the tets touching it in index order.
+#pragma once
+
+#include "vesalius/core/grid.h"
+#include "vesalius/core/label_map.h"
+#include "vesalius/core/mesh.h"
+
+#include <optional>
+
+namespace vesalius::posing {
+
+struct PosedVolumeOptions {
+  // Grid of the posed volume; the input's geometry if not given (a pose that leaves the input's field of
+  // view needs a larger one).
+  std::optional<GridGeometry> outputGeometry;
+  // Value of voxels no posed tet covers. Default: 0 (unlabelled) for label maps, the scan's minimum for
+  // scans (air in CT). For labels it must be a valid Label.
+  std::optional<double> background;
+};
+
+// restV: #V by 3 rest tet mesh vertices (mm, LPS, the scan's space), T: #T by 4 tets, posedV: #V by 3
+// posed vertices, scan: the rest-pose volume. Returns the posed scan (trilinear sampling), with the input's
+// fileType. Throws BadInput if posedV is not #V by 3, a tet refers to a missing vertex, a geometry is
+// invalid, the values do not fill the grid, or the background is not finite.
+Image poseImage(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV, const Image& scan,
+                const PosedVolumeOptions& options = {});
+
+// Same for a label map (nearest-neighbour sampling); the label table is copied. Throws BadInput as above,
+// and if the background is not a Label.
+LabelMap poseLabels(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV, const LabelMap& labels,
+                    const PosedVolumeOptions& options = {});
+
+}  // namespace vesalius::posing
