@@ -4,7 +4,7 @@
 // what the seed plots: per-marker errors and their histogram (Fig. 16), the objective per iteration
 // (Fig. 9), the minimum dihedral angles before and after (Fig. 17); the picture shows the fitted surface's
 // contour over the scan's slices (Fig. 18) beside the error histogram.
-#include "common.h"
+#include "cmd_fit.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/markers.h"
@@ -46,18 +46,6 @@ namespace fs = std::filesystem;
 
 constexpr double kIcpBinMm = 0.25;       // Fig. 16 histogram bins
 constexpr double kDihedralBinDeg = 5.0;  // Fig. 17 histogram bins
-
-struct FitCommandOptions {
-  std::string templ, icp, templateLandmarks, scanLandmarks, attachTo, attachments;
-  std::string out, surfaceOut, embed, embedOut, overlay, png;
-  double attachRadius = 0;
-  bool unattached = false;
-  std::string method = "plastic", init = "similarity";
-  long targetTets = 20000;
-  double window = 400, level = 40;
-  fit::FitOptions solver;
-  CommonOptions common;
-};
 
 // ---- Options ----
 
@@ -534,7 +522,9 @@ void writeOutputs(const FitCommandOptions& o, const Template& t, const fit::FitR
   }
 }
 
-void runFit(const FitCommandOptions& o) {
+}  // namespace
+
+FitOutcome runFit(const FitCommandOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   checkOptions(o);
   io::Report report("fit");
@@ -577,9 +567,8 @@ void runFit(const FitCommandOptions& o) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   printSummary(o, t.tets, start, in, icpBefore, result, seconds);
   o.common.finish(report);
+  return {t.tets.T.rows(), icpBefore, result.icpErrors, seconds};
 }
-
-}  // namespace
 
 void addFitCommand(CLI::App& app) {
   auto o = std::make_shared<FitCommandOptions>();

@@ -40,5 +40,8 @@ void addSurfaceCommand(CLI::App& app);
 void addTetmeshCommand(CLI::App& app);
 void addFitCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
+void addRigCommand(CLI::App& app);
+void addPoseCommand(CLI::App& app);
+void addFatCommand(CLI::App& app);
 
 }  // namespace vesalius::cli

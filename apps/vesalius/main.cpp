@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
   vesalius::cli::addTetmeshCommand(app);
   vesalius::cli::addMarkersCommand(app);
   vesalius::cli::addFitCommand(app);
+  vesalius::cli::addRigCommand(app);
+  vesalius::cli::addPoseCommand(app);
+  vesalius::cli::addFatCommand(app);
   vesalius::cli::addDemoCommand(app);
 
   try {

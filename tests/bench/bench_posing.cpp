@@ -15,7 +15,7 @@
 #include "vesalius/posing/dual_quaternion_skinning.h"
 #include "vesalius/posing/linear_blend_skinning.h"
 #include "vesalius/posing/rotation_centers.h"
-#include "vesalius/posing/tet_embedding.h"
+#include "vesalius/core/tet_embedding.h"
 
 #include <sys/resource.h>
 
@@ -72,10 +72,10 @@ void mapping(const test::BoneBar& bar, const Eigen::MatrixXd& W) {
   std::uniform_real_distribution<double> x(-0.1, 48.1), yz(-0.1, 8.1);
   MatrixX3d P(1300000, 3);
   for (Eigen::Index p = 0; p < P.rows(); ++p) P.row(p) << x(rng), yz(rng), yz(rng);
-  posing::TetEmbedding e;
-  const double tEmbed = bench::seconds([&] { e = posing::embedInTets(bar.mesh.V, bar.mesh.T, P); });
+  TetEmbedding e;
+  const double tEmbed = bench::seconds([&] { e = embedInTets(bar.mesh.V, bar.mesh.T, P); });
   const MatrixX3d posedV = posing::linearBlendSkinning(bar.mesh.V, W, test::middleJointPose(bar, Eigen::Vector3d::UnitZ(), 100.0));
-  const double tApply = bench::seconds([&] { posing::apply(e, posedV); });
+  const double tApply = bench::seconds([&] { e.apply(posedV); });
   const long outside = long((e.barycentric.rowwise().minCoeff().array() < -1e-9).count());
   std::printf("| mapping %ld points (%.1f %% outside) into %ld tets | embed %.1f s | carry posed %.0f ms |\n",
               long(P.rows()), 100.0 * double(outside) / double(P.rows()), long(bar.mesh.T.rows()), tEmbed, 1e3 * tApply);

@@ -1,7 +1,7 @@
 // Tissue points carried by the tet mesh (seed 001 §3.4-3.5): embedding, barycentric transfer and the
 // per-tet affine maps agree, and reproduce affine deformations exactly, inside and outside the mesh.
 #include "vesalius/posing/tet_affine_maps.h"
-#include "vesalius/posing/tet_embedding.h"
+#include "vesalius/core/tet_embedding.h"
 
 #include "vesalius/core/error.h"
 
@@ -41,8 +41,8 @@ TEST(TetEmbedding, ReproducesAnAffineDeformationInsideAndOutside) {
   const Eigen::Affine3d A = someAffineMap();
   for (const auto& [lo, hi] : {std::pair{0.0, 30.0}, std::pair{-5.0, 35.0}}) {
     const MatrixX3d P = randomPoints(500, lo, hi, 7);
-    const posing::TetEmbedding e = posing::embedInTets(box.V, box.T, P);
-    const double error = (posing::apply(e, transformed(A, box.V)) - transformed(A, P)).cwiseAbs().maxCoeff();
+    const TetEmbedding e = embedInTets(box.V, box.T, P);
+    const double error = (e.apply(transformed(A, box.V)) - transformed(A, P)).cwiseAbs().maxCoeff();
     EXPECT_LT(error, 1e-11) << "points in [" << lo << ", " << hi << "]^3";
   }
 }
@@ -50,7 +50,7 @@ TEST(TetEmbedding, ReproducesAnAffineDeformationInsideAndOutside) {
 TEST(TetEmbedding, PointsInsideGetTheirContainingTet) {
   const TetMesh box = test::boxTets(3, 3, 3, 10.0);
   const MatrixX3d P = randomPoints(500, 0.0, 30.0, 11);
-  const posing::TetEmbedding e = posing::embedInTets(box.V, box.T, P);
+  const TetEmbedding e = embedInTets(box.V, box.T, P);
   EXPECT_GE(e.barycentric.minCoeff(), -1e-12);
   EXPECT_LT((e.barycentric.rowwise().sum().array() - 1.0).abs().maxCoeff(), 1e-12);
   for (Eigen::Index p = 0; p < P.rows(); ++p) ASSERT_EQ(e.corners.row(p), box.T.row(e.tet[p]));
@@ -63,9 +63,9 @@ TEST(TetAffineMaps, AgreeWithTheEmbeddingUnderANonlinearDeformation) {
     posed.row(v) << box.V(v, 0) + 0.01 * box.V(v, 1) * box.V(v, 1), box.V(v, 1) + 3.0 * std::sin(box.V(v, 0) / 9.0),
         box.V(v, 2);
   const MatrixX3d P = randomPoints(300, 0.0, 30.0, 3);
-  const posing::TetEmbedding e = posing::embedInTets(box.V, box.T, P);
+  const TetEmbedding e = embedInTets(box.V, box.T, P);
   const std::vector<Eigen::Affine3d> maps = posing::tetAffineMaps(box.V, box.T, posed);
-  const MatrixX3d carried = posing::apply(e, posed);
+  const MatrixX3d carried = e.apply(posed);
   for (Eigen::Index p = 0; p < P.rows(); ++p)
     EXPECT_LT((maps[std::size_t(e.tet[p])] * Eigen::Vector3d(P.row(p)) - carried.row(p).transpose()).norm(), 1e-11);
   const Eigen::Affine3d A = someAffineMap();

@@ -2,9 +2,7 @@
 #include "vesalius/fit/embedding.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/tet_locator.h"
-
-#include <vector>
+#include "vesalius/core/tet_embedding.h"
 
 namespace vesalius::fit {
 
@@ -12,15 +10,7 @@ TriMesh embedSurface(const TriMesh& surface, const MatrixX3d& restV, const Matri
   if (restV.rows() != fittedV.rows())
     throw UsageError("embedding: rest and fitted positions differ in number of vertices");
   TriMesh moved = surface;
-  if (surface.V.rows() == 0) return moved;
-  const TetLocator locator(restV, T);
-  const std::vector<TetLocation> where = locator.locateOrNearest(surface.V);
-  for (Eigen::Index v = 0; v < surface.V.rows(); ++v) {
-    const int tet = where[std::size_t(v)].tet;
-    const Eigen::Vector4d weights = locator.barycentric(tet, surface.V.row(v).transpose());
-    moved.V.row(v).setZero();
-    for (int corner = 0; corner < 4; ++corner) moved.V.row(v) += weights[corner] * fittedV.row(T(tet, corner));
-  }
+  if (surface.V.rows() > 0) moved.V = embedInTets(restV, T, surface.V).apply(fittedV);
   return moved;
 }
 

@@ -224,7 +224,7 @@ OrderedJson controlPoint(const Marker& m, int id) {
   p["label"] = m.label;
   p["description"] = m.description;
   p["associatedNodeID"] = "";
-  if (m.status == MarkerStatus::Defined)
+  if (m.status != MarkerStatus::Undefined)  // a preview point has a position too (Slicer writes it)
     p["position"] = lpsArray(m.position);
   else
     p["position"] = "";

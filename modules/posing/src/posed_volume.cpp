@@ -2,6 +2,7 @@
 #include "vesalius/posing/posed_volume.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/grid_sampling.h"
 
 #include <tbb/parallel_for.h>
 
@@ -121,34 +122,6 @@ Grid<Value> rasterize(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3
   return posed;
 }
 
-// Whether a continuous index lies within half a voxel of the grid's voxel centres.
-bool insideGrid(const Eigen::Vector3d& c, const Eigen::Vector3i& size) {
-  return (c.array() >= -0.5).all() && (c.array() <= size.cast<double>().array() - 0.5).all();
-}
-
-// Trilinear interpolation; the outermost half voxel takes the edge voxels' values.
-float trilinear(const Grid<float>& g, const Eigen::Vector3d& c) {
-  int i0[3];
-  double f[3];
-  for (int d = 0; d < 3; ++d) {
-    const int n = g.geometry.size[d];
-    const double x = std::clamp(c[d], 0.0, double(n - 1));
-    i0[d] = std::max(0, std::min(int(std::floor(x)), n - 2));
-    f[d] = n == 1 ? 0.0 : x - i0[d];
-  }
-  // A one-voxel axis has no second sample: its "+1" neighbour is itself (with weight 0).
-  const auto at = [&](int di, int dj, int dk) {
-    const int i = std::min(i0[0] + di, g.geometry.size.x() - 1), j = std::min(i0[1] + dj, g.geometry.size.y() - 1),
-              k = std::min(i0[2] + dk, g.geometry.size.z() - 1);
-    return double(g.at(i, j, k));
-  };
-  double value = 0;
-  for (int dk = 0; dk < 2; ++dk)
-    for (int dj = 0; dj < 2; ++dj)
-      for (int di = 0; di < 2; ++di)
-        value += (di ? f[0] : 1 - f[0]) * (dj ? f[1] : 1 - f[1]) * (dk ? f[2] : 1 - f[2]) * at(di, dj, dk);
-  return float(value);
-}
 
 }  // namespace
 
@@ -163,7 +136,7 @@ Image poseImage(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& pos
   Image posed;
   static_cast<Grid<float>&>(posed) =
       rasterize(restV, T, posedV, scan.geometry, out, fill, [&](const Eigen::Vector3d& c) {
-        return insideGrid(c, scan.geometry.size) ? trilinear(scan, c) : fill;
+        return insideVoxels(c, scan.geometry.size) ? float(sampleTrilinear(scan, c)) : fill;
       });
   posed.fileType = scan.fileType;
   return posed;
@@ -181,7 +154,7 @@ LabelMap poseLabels(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d&
   LabelMap posed;
   posed.table = labels.table;
   posed.labels = rasterize(restV, T, posedV, in.geometry, out, fill, [&](const Eigen::Vector3d& c) {
-    if (!insideGrid(c, in.geometry.size)) return fill;
+    if (!insideVoxels(c, in.geometry.size)) return fill;
     // The far half voxel rounds up to `size`, which belongs to the last voxel.
     const Eigen::Vector3i n = (c.array() + 0.5).floor().cast<int>().min(in.geometry.size.array() - 1);
     return in.at(n.x(), n.y(), n.z());

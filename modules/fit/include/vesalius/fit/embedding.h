@@ -2,13 +2,9 @@
 // (seed 002 §4.3: the textured liver surface embedded in the template tet mesh and "transformed with the
 // shape deformation of the tet mesh").
 //
-// Each surface vertex is located in the rest tet mesh (TetLocator::locateOrNearest) and moved with the
-// barycentric weights of its tet to the fitted positions. A vertex outside the tet mesh (a surface a
-// little larger than the mesh's boundary) takes the affine map of its nearest tet, i.e. its unclamped
-// barycentric weights in that tet, so it keeps its offset from the boundary instead of being snapped onto
-// it; the offset then deforms as that tet does, so where a fit distorts the boundary tets it is stretched
-// with them. Inside a tet the map is the tet's affine map too, so an affine deformation of the tet mesh
-// moves every vertex exactly.
+// Each surface vertex is embedded in the rest tet mesh (core/tet_embedding.h) and carried to the fitted
+// positions. A vertex a little outside the tet mesh keeps its offset from the boundary, deformed as its
+// nearest tet is; an affine deformation of the tet mesh moves every vertex exactly.
 #pragma once
 
 #include "vesalius/core/mesh.h"

@@ -3,7 +3,7 @@
 //
 // With rest edges E = [x1-x0, x2-x0, x3-x0] and posed edges E', the map is x ↦ E' E⁻¹ (x - x0) + x0'.
 // Applied to a point embedded in the tet it gives exactly what barycentric interpolation of the posed
-// corners gives (tet_embedding.h); the maps are the form a renderer or a volume resampler wants (the
+// corners gives (core/tet_embedding.h); the maps are the form a renderer or a volume resampler wants (the
 // seed's posed volumes invert them per tet, §5).
 #pragma once
 

@@ -1,5 +1,5 @@
-// Tissue points in the tet mesh (tet_embedding.h).
-#include "vesalius/posing/tet_embedding.h"
+// Points carried by a tet mesh (tet_embedding.h).
+#include "vesalius/core/tet_embedding.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/tet_locator.h"
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace vesalius::posing {
+namespace vesalius {
 
 TetEmbedding embedInTets(const MatrixX3d& V, const MatrixX4i& T, const MatrixX3d& P) {
   const TetLocator locator(V, T);
@@ -26,19 +26,19 @@ TetEmbedding embedInTets(const MatrixX3d& V, const MatrixX4i& T, const MatrixX3d
   return e;
 }
 
-MatrixX3d apply(const TetEmbedding& embedding, const MatrixX3d& posedV) {
-  if (embedding.corners.size() > 0 && embedding.corners.maxCoeff() >= posedV.rows())
-    throw UsageError("tet embedding: a tet corner is beyond the " + std::to_string(posedV.rows()) +
-                     " posed vertices");
-  MatrixX3d posed(embedding.corners.rows(), 3);
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, posed.rows(), 4096), [&](const tbb::blocked_range<Eigen::Index>& r) {
+MatrixX3d TetEmbedding::apply(const MatrixX3d& deformedV) const {
+  if (corners.size() > 0 && corners.maxCoeff() >= deformedV.rows())
+    throw UsageError("tet embedding: a tet corner is beyond the " + std::to_string(deformedV.rows()) +
+                     " deformed vertices");
+  MatrixX3d carried(corners.rows(), 3);
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, carried.rows(), 4096), [&](const tbb::blocked_range<Eigen::Index>& r) {
     for (Eigen::Index p = r.begin(); p < r.end(); ++p) {
       Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
-      for (int k = 0; k < 4; ++k) x += embedding.barycentric(p, k) * posedV.row(embedding.corners(p, k));
-      posed.row(p) = x;
+      for (int k = 0; k < 4; ++k) x += barycentric(p, k) * deformedV.row(corners(p, k));
+      carried.row(p) = x;
     }
   });
-  return posed;
+  return carried;
 }
 
-}  // namespace vesalius::posing
+}  // namespace vesalius

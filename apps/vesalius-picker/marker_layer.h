@@ -1,0 +1,53 @@
+// Markers drawn in one renderer: one actor per marker kind, so 5,000 markers cost three actors, not
+// 5,000, plus one label mapper. Slice views draw discs with a glyph mapper; the 3D view draws each
+// marker as one point rendered as a sphere by the GPU, which keeps thousands of them cheap. The caller decides which markers to show and where (a slice view
+// passes the ones on its slice in plane coordinates; the 3D view passes all of them in world space).
+#pragma once
+
+#include "vesalius/core/markers.h"
+
+#include <vtkSmartPointer.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkActor2D;
+class vtkPolyData;
+class vtkRenderer;
+
+namespace vesalius::picker {
+
+// Each kind's colour (RGB in 0..1): landmarks yellow, ICP markers cyan, attachments magenta.
+Eigen::Vector3d markerKindColour(MarkerKind kind);
+
+struct MarkerGlyph {
+  Eigen::Vector3d position;  // in the renderer's coordinates
+  MarkerKind kind = MarkerKind::Landmark;
+  std::string label;  // empty: no label
+};
+
+// Flat discs facing +z, sized in the renderer's units (slices); spheres of a fixed size on screen (3D).
+enum class GlyphShape { Disc, ScreenSphere };
+
+class MarkerLayer {
+ public:
+  MarkerLayer(vtkRenderer* renderer, GlyphShape shape);
+  ~MarkerLayer();
+
+  // Replaces what is drawn. `radius`: the disc radius in the renderer's units (mm); labels sit that far
+  // and a half to the right of their marker.
+  void show(const std::vector<MarkerGlyph>& glyphs, double radius);
+
+ private:
+  std::array<vtkSmartPointer<vtkPolyData>, 3> pointsPerKind_;
+  std::array<vtkSmartPointer<vtkActor>, 3> actorsPerKind_;
+  GlyphShape shape_;
+  vtkSmartPointer<vtkPolyData> labelAnchors_;
+  vtkSmartPointer<vtkActor2D> labelActor_;
+};
+
+}  // namespace vesalius::picker

@@ -1,0 +1,168 @@
+#include "picker_app.h"
+
+#include "autosave.h"
+#include "picker_controller.h"
+#include "picker_document.h"
+#include "picker_inputs.h"
+#include "picker_interactor_style.h"
+#include "picker_window.h"
+#include "scan_volume.h"
+
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/core/error.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/polydata.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkImageMapToColors.h>
+#include <vtkInteractorEventRecorder.h>
+#include <vtkLookupTable.h>
+
+#include <Eigen/LU>
+
+#include <X11/Xlib.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace vesalius::picker {
+namespace {
+
+const Eigen::Vector3d kOverlayColour(1.0, 0.45, 0.1);
+constexpr double kLabelOpacity = 0.35;
+
+void checkOutputPath(const PickerOptions& options, const std::string& outputPath) {
+  namespace fs = std::filesystem;
+  if (fileExtension(outputPath) != ".mrk.json")
+    throw UsageError("--out must end in .mrk.json (3D Slicer markups): " + outputPath);
+  std::error_code error;
+  if (!options.markersPath.empty() && fs::exists(outputPath, error) &&
+      fs::equivalent(outputPath, options.markersPath, error))
+    throw UsageError("--out " + outputPath + " is the --markers input, which is never overwritten");
+  if (fs::exists(outputPath, error) && !options.force)
+    throw UsageError(outputPath + " exists; pass --force to replace it or choose another --out");
+}
+
+vtkSmartPointer<vtkLookupTable> labelColours(const LabelTable& table) {
+  Label highest = 0;
+  for (const LabelEntry& entry : table.entries) highest = std::max(highest, entry.id);
+  auto lookup = vtkSmartPointer<vtkLookupTable>::New();
+  lookup->SetNumberOfTableValues(highest + 1);
+  lookup->SetTableRange(0, highest);
+  for (int id = 0; id <= highest; ++id) lookup->SetTableValue(id, 0, 0, 0, 0);
+  for (const LabelEntry& entry : table.entries)
+    lookup->SetTableValue(entry.id, entry.color[0] / 255.0, entry.color[1] / 255.0, entry.color[2] / 255.0,
+                          kLabelOpacity);
+  return lookup;
+}
+
+void addLabelLayers(PickerWindow& window, const std::string& labelsPath) {
+  const LabelMap labels = io::readLabelMap(labelsPath);
+  const auto voxels = indexSpaceLabels(labels.labels);
+  const auto worldToIndex = toVtkMatrix(labels.labels.geometry.indexToWorldMatrix().inverse());
+  const auto lookup = labelColours(labels.table);
+  for (SliceView* view : window.sliceViews()) {
+    auto colours = vtkSmartPointer<vtkImageMapToColors>::New();
+    colours->SetLookupTable(lookup);
+    colours->SetOutputFormatToRGBA();
+    view->addLabelLayer(voxels, worldToIndex, colours);
+  }
+}
+
+void addOverlays(PickerWindow& window, const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    const auto surface = io::toPolyData(readOverlaySurface(path));
+    for (SliceView* view : window.sliceViews()) view->addSurfaceContour(surface, kOverlayColour);
+    window.view3d().addSurface(surface, kOverlayColour);
+  }
+}
+
+// VTK aborts when it cannot open the X display; say so in one line instead.
+void requireDisplay() {
+  Display* display = XOpenDisplay(nullptr);
+  if (!display) {
+    const char* name = std::getenv("DISPLAY");
+    throw UsageError(std::string("cannot open the X display '") + (name ? name : "") +
+                     "'; vesalius-picker needs one (without a screen, run it under xvfb-run)");
+  }
+  XCloseDisplay(display);
+}
+
+// Closing the window ends the event loop like Ctrl+Q (VTK 9.1's default TerminateApp() crashes inside
+// Start(), BUILD-NOTES.md).
+void endLoopOnWindowClose(vtkRenderWindowInteractor* interactor) {
+  auto endLoop = vtkSmartPointer<vtkCallbackCommand>::New();
+  endLoop->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+    static_cast<vtkRenderWindowInteractor*>(caller)->SetDone(true);
+  });
+  interactor->AddObserver(vtkCommand::ExitEvent, endLoop);
+}
+
+void playEvents(vtkRenderWindowInteractor* interactor, const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw BadInput(path, "cannot open the events file");
+  auto recorder = vtkSmartPointer<vtkInteractorEventRecorder>::New();
+  recorder->SetInteractor(interactor);
+  recorder->SetFileName(path.c_str());
+  recorder->Play();
+  recorder->SetInteractor(nullptr);
+}
+
+}  // namespace
+
+std::string defaultOutputPath(const PickerOptions& options) {
+  namespace fs = std::filesystem;
+  if (!options.markersPath.empty()) {
+    const std::string stem =
+        options.markersPath.substr(0, options.markersPath.size() - fileExtension(options.markersPath).size());
+    return stem + "-picked.mrk.json";
+  }
+  const fs::path scan = fs::path(options.scanPath).lexically_normal();
+  std::string name = (scan.has_filename() ? scan.filename() : scan.parent_path().filename()).string();
+  name = name.substr(0, name.size() - fileExtension(name).size());
+  return name + "-markers.mrk.json";
+}
+
+int runPicker(const PickerOptions& options) {
+  const std::string outputPath = options.outputPath.empty() ? defaultOutputPath(options) : options.outputPath;
+  checkOutputPath(options, outputPath);
+  const ScanVolume scan(io::readScan(options.scanPath));
+  const std::string autosavePath = autosavePathFor(outputPath);
+  bool restored = false;
+  MarkerSet markers = initialMarkers(options, autosavePath, restored);
+  if (!options.landmarkNamesPath.empty()) addNamedLandmarks(markers, options.landmarkNamesPath);
+  PickerDocument document(std::move(markers), restored);
+  document.setAutosavePath(autosavePath);
+  if (restored) std::cerr << "restored unsaved markers from " << autosavePath << "\n";
+
+  requireDisplay();
+  PickerWindow window(scan, options.windowWidth, options.windowHeight);
+  if (!options.labelsPath.empty()) addLabelLayers(window, options.labelsPath);
+  addOverlays(window, options.overlayPaths);
+  PickerController controller(document, window, scan, outputPath, options.force);
+  auto style = vtkSmartPointer<PickerInteractorStyle>::New();
+  style->setController(&controller);
+  window.interactor()->SetInteractorStyle(style);
+  endLoopOnWindowClose(window.interactor());
+  window.interactor()->Initialize();
+  window.renderWindow()->Render();  // the viewports have their pixel sizes from here on
+  window.fitViews();
+  controller.refresh();
+
+  auto recorder = vtkSmartPointer<vtkInteractorEventRecorder>::New();
+  if (!options.recordEventsPath.empty()) {
+    recorder->SetInteractor(window.interactor());
+    recorder->SetFileName(options.recordEventsPath.c_str());
+    recorder->On();
+    recorder->Record();
+  }
+  if (!options.playEventsPath.empty()) playEvents(window.interactor(), options.playEventsPath);
+  if (!options.screenshotPath.empty()) window.writeScreenshot(options.screenshotPath);
+  if (options.playEventsPath.empty() || !options.exitAfterPlay) window.interactor()->Start();
+  if (!options.recordEventsPath.empty()) recorder->Stop();
+  document.autosave();
+  return kExitOk;
+}
+
+}  // namespace vesalius::picker

@@ -1,0 +1,180 @@
+// vesalius rig: the posing rig of a body (seed 001 §3.1-3.5 preprocessing): a tet mesh of the inside of
+// the skin with bone regions, bone weights, centres of rotation, and the meshes it will carry.
+#include "anatomy_rig.h"
+#include "common.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/motion_io.h"
+#include "vesalius/io/skeleton_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/tetrahedralize.h"
+#include "vesalius/posing/bone_capsules.h"
+#include "vesalius/posing/bone_weights.h"
+#include "vesalius/posing/rotation_centers.h"
+#include "vesalius/posing/skeleton_pose.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace vesalius::cli {
+
+namespace {
+
+struct RigOptions {
+  std::string skin, skeleton, baseMesh, out, space = "auto";
+  std::vector<std::string> tissues;
+  double voxelSize = 4.0;
+  long targetTets = 100000;
+  bool corCentres = false;
+  posing::BoneCapsuleOptions capsules;
+  CommonOptions common;
+};
+
+// MakeHuman's space (decimetres, +Y up, facing +Z) to ours (mm, LPS); the identity for "lps".
+TriMesh toLps(TriMesh mesh, bool makeHuman) {
+  if (makeHuman) mesh.V = (100.0 * mesh.V * posing::yUpToLps().transpose()).eval();
+  return mesh;
+}
+
+Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
+  if (fileExtension(o.skeleton) == ".bvh") {
+    const Skeleton s = io::readBvh(o.skeleton).skeleton;
+    return makeHuman ? posing::transformSkeleton(s, posing::yUpToLps(), 100.0) : s;
+  }
+  if (fileExtension(o.skeleton) != ".mhskel") throw UsageError("rig: --skeleton must be a .mhskel or .bvh file");
+  const std::string base = o.baseMesh.empty() ? (fs::path(o.skeleton).parent_path() / "base.obj").string() : o.baseMesh;
+  if (!fs::exists(base)) throw UsageError(o.skeleton + ": a MakeHuman skeleton needs its base mesh; pass --base-mesh");
+  const Skeleton s = io::readMakeHumanSkeleton(o.skeleton, io::readTriMesh(base).V);
+  return makeHuman ? posing::transformSkeleton(s, posing::yUpToLps(), 100.0) : s;
+}
+
+// Seed 001 §3.2: the inside of the skin as a voxel image under the size cap, its surface (closed, free
+// of self-crossings, which TetGen needs and an artist's mesh need not be), then TetGen. The image is
+// opened by one voxel and reduced to its largest component first: parts a voxel or two thin (finger
+// tips, toes at coarse voxels) would otherwise give flat surface pieces TetGen cannot seed.
+TetMesh bodyTets(const TriMesh& skin, const RigOptions& o) {
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = o.voxelSize;
+  const GridGeometry geometry = meshing::coveringGrid({&skin}, grid);
+  const segmentation::Mask inside = segmentation::largestComponent(
+      segmentation::openMm(meshing::meshInsideMask(skin, geometry), geometry.spacing.maxCoeff()));
+  meshing::TetrahedralizeOptions tet;
+  tet.targetTets = o.targetTets;
+  // The voxel surface has about a triangle per boundary voxel face, which TetGen would keep and refine
+  // around (900k tets for a target of 30k at 8 mm voxels); decimated to a quarter of the target, the
+  // tet count follows the target.
+  meshing::SurfaceOptions surface;
+  surface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
+  const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
+  return meshing::tetrahedralizeRegions({{meshing::labelSurface(body, 1, surface), 1, o.skin + " (voxelized)"}}, tet);
+}
+
+// Bone columns: the joints whose capsule holds a vertex, in skeleton order; "bone" becomes the column.
+std::vector<int> compactBones(Eigen::VectorXi& boneOfVertex, int joints) {
+  std::vector<int> column(joints, -1), boneJoint;
+  for (Eigen::Index v = 0; v < boneOfVertex.size(); ++v)
+    if (boneOfVertex[v] >= 0) column[boneOfVertex[v]] = 0;
+  for (int j = 0; j < joints; ++j)
+    if (column[j] == 0) {
+      column[j] = int(boneJoint.size());
+      boneJoint.push_back(j);
+    }
+  for (Eigen::Index v = 0; v < boneOfVertex.size(); ++v)
+    if (boneOfVertex[v] >= 0) boneOfVertex[v] = column[boneOfVertex[v]];
+  return boneJoint;
+}
+
+void runRig(const RigOptions& o) {
+  if (o.space != "auto" && o.space != "makehuman" && o.space != "lps")
+    throw UsageError("rig: --space must be auto, makehuman or lps");
+  const bool makeHuman = o.space == "makehuman" || (o.space == "auto" && fileExtension(o.skeleton) == ".mhskel");
+  io::Report report("rig");
+  report.input("skin", o.skin);
+  report.input("skeleton", o.skeleton);
+  report.parameter("voxel_size_mm", o.voxelSize);
+  report.parameter("target_tets", o.targetTets);
+  report.parameter("capsule_radius_fraction", o.capsules.radiusFraction);
+  report.parameter("capsule_end_trim", o.capsules.endTrim);
+  Progress progress(o.common.progressStyle());
+
+  AnatomyRig rig;
+  const TriMesh skin = toLps(io::readTriMesh(o.skin), makeHuman);
+  rig.skeleton = readSkeleton(o, makeHuman);
+  {
+    auto timer = report.time("tetrahedralize");
+    progress.begin("tetrahedralize", "voxelize the skin, surface it, TetGen");
+    rig.tets = bodyTets(skin, o);
+    progress.end();
+  }
+  Eigen::VectorXi bone = posing::boneCapsuleVertices(rig.tets.V, rig.skeleton, skin, o.capsules);
+  rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
+  {
+    auto timer = report.time("weights");
+    progress.begin("weights", "Laplace bone weights");
+    rig.tets.vertexAttributes.real["weights"] = posing::computeBoneWeights(rig.tets.V, rig.tets.T, bone);
+    progress.end();
+  }
+  if (o.corCentres) {
+    auto timer = report.time("rotation_centres");
+    progress.begin("centres", "CoR centres of rotation");
+    rig.tets.vertexAttributes.real["cor_centre"] =
+        posing::computeRotationCenters(rig.tets.V, rig.tets.T, rig.tets.vertexAttributes.real["weights"]);
+    progress.end();
+  }
+  rig.tets.vertexAttributes.integer["bone"] = bone;
+
+  std::vector<std::pair<std::string, TriMesh>> meshes{{"skin" + fileExtension(o.skin), skin}};
+  for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), toLps(io::readTriMesh(t), makeHuman));
+  writeAnatomyRig(o.out, rig, meshes, o.common.writeOptions());
+  report.output("anatomy", o.out);
+  const long boneVertices = (bone.array() >= 0).count();
+  report.metric("tet_vertices", rig.tets.V.rows());
+  report.metric("tets", rig.tets.T.rows());
+  report.metric("bones", rig.boneJoint.size());
+  report.metric("bone_vertices", boneVertices);
+  std::cout << o.out << ": " << rig.tets.V.rows() << " vertices, " << rig.tets.T.rows() << " tets, "
+            << rig.boneJoint.size() << " of " << rig.skeleton.joints.size() << " joints with bone regions ("
+            << boneVertices << " bone vertices), " << meshes.size() << " mesh(es)\n";
+  o.common.finish(report);
+}
+
+}  // namespace
+
+void addRigCommand(CLI::App& app) {
+  auto o = std::make_shared<RigOptions>();
+  CLI::App* cmd = app.add_subcommand("rig", "Posing rig of a body: tet mesh, bone regions, weights, CoR centres");
+  cmd->add_option("--skin", o->skin, "Closed body surface (.obj .stl .vtp .ply .vtk)")->required();
+  cmd->add_option("--skeleton", o->skeleton, "Skeleton: MakeHuman .mhskel or .bvh")->required();
+  cmd->add_option("--base-mesh", o->baseMesh, "MakeHuman base.obj for a .mhskel (default: beside it)");
+  cmd->add_option("--tissue", o->tissues, "A mesh to carry along (organ, bone, muscle), repeatable");
+  cmd->add_option("--space", o->space,
+                  "Space of the inputs: makehuman (decimetres, +Y up; converted to mm LPS), lps (mm), or auto "
+                  "(makehuman for a .mhskel)")
+      ->capture_default_str();
+  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the inside image, mm (grown to keep it under "
+                                               "250x120x700 voxels, seed 001 §3.2)")
+      ->capture_default_str();
+  cmd->add_option("--target-tets", o->targetTets, "About this many tets")->capture_default_str();
+  cmd->add_option("--capsule-radius", o->capsules.radiusFraction,
+                  "Bone capsule radius as a fraction of the bone's distance to the skin")
+      ->capture_default_str();
+  cmd->add_option("--capsule-trim", o->capsules.endTrim, "Fraction of each bone left free at both ends")
+      ->capture_default_str();
+  cmd->add_flag("--cor-centres", o->corCentres,
+                "Also compute the centres of rotation for `pose --method cor` (minutes with many bones)");
+  cmd->add_option("--out", o->out, "Anatomy directory to write (rig.vtu, bones.txt, skeleton.bvh, meshes/)")->required();
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Example:\n  vesalius rig --skin testdata/body/shapes/mh_neutral_body.obj "
+      "--skeleton testdata/body/default.mhskel --out body-rig\n"
+      "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.");
+  cmd->callback([o] { runRig(*o); });
+}
+
+}  // namespace vesalius::cli

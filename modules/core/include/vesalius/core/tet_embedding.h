@@ -1,0 +1,33 @@
+// Points embedded in a tet mesh and carried with its deformation: tissue vertices in the posing tet mesh
+// (seed 001 §3.4-3.5), a textured surface in a fitted template (seed 002 §4.3).
+//
+// Each point is located once in the rest tet mesh (TetLocator: a bounding-volume hierarchy in place of
+// seed 001's spatial hash) and keeps its tet and its barycentric coordinates there. Deformed, it is the
+// same combination of that tet's deformed corners, i.e. the tet's affine map applied to the point. A point
+// outside the mesh (seed 001 met 4.6 % such tissue vertices) takes the nearest tet and its unclamped
+// barycentric coordinates in it, so it keeps its offset from the surface, deformed with that tet, instead
+// of being snapped onto the surface. An affine deformation of the tet mesh therefore moves every point
+// exactly, inside or outside.
+#pragma once
+
+#include "vesalius/core/mesh.h"
+
+#include <Eigen/Core>
+
+namespace vesalius {
+
+struct TetEmbedding {
+  Eigen::VectorXi tet;                                   // #P: containing (or nearest) tet of each point
+  MatrixX4i corners;                                     // #P by 4: that tet's vertex indices
+  Eigen::Matrix<double, Eigen::Dynamic, 4> barycentric;  // #P by 4: weights of the corners, summing to 1
+
+  // deformedV: #V by 3 deformed tet mesh vertices. Returns #P by 3 carried points. Throws UsageError if
+  // an embedded corner is not a row of deformedV.
+  MatrixX3d apply(const MatrixX3d& deformedV) const;
+};
+
+// V: #V by 3 rest tet mesh vertices, T: #T by 4 tets, P: #P by 3 points in the same rest space. Throws
+// BadInput if the tet mesh has no tets.
+TetEmbedding embedInTets(const MatrixX3d& V, const MatrixX4i& T, const MatrixX3d& P);
+
+}  // namespace vesalius

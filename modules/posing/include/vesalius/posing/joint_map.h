@@ -1,0 +1,32 @@
+// Which joint of a motion's skeleton drives which joint of ours: the name map of motion retargeting
+// (seed 001 §3.5 names retargeting as the way recorded motions reach the virtual skeleton; retarget.h).
+//
+// The file format is text, one pair a line, "# comment" lines and blank lines ignored:
+//     # source (motion) joint    target (skeleton) joint
+//     LeftUpLeg                  upperleg01.L
+// A target joint appears at most once (it has one driver); a source joint may drive several targets.
+// Target joints the map does not name keep their rest rotation relative to their parent (retarget.h).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace vesalius::posing {
+
+struct JointMap {
+  std::vector<std::pair<std::string, std::string>> pairs;  // (source joint, target joint), file order
+};
+
+// Throws BadInput "<source>: line N: <problem>" for a line that is not two names or a target named twice.
+JointMap parseJointMap(std::string_view text, const std::string& source);
+
+// CMU motion-capture BVH names (testdata/motion/01_01.bvh: Hips, LHipJoint, LeftUpLeg, ...) onto the
+// bones of MakeHuman's default.mhskel (root, pelvis.L, upperleg01.L, ...). MakeHuman splits the limbs and
+// spine into more bones than CMU has joints; the map drives the first bone of each split (upperleg01.L
+// for the thigh) and its unmapped continuation (upperleg02.L) follows rigidly. Fingers, toes and the face
+// are not driven.
+JointMap cmuToMakeHumanJointMap();
+
+}  // namespace vesalius::posing

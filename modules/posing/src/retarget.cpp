@@ -1,0 +1,91 @@
+#include "vesalius/posing/retarget.h"
+
+#include "vesalius/core/error.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace vesalius::posing {
+namespace {
+
+// Direction of joint j's bone in its own frame: to its tail, else to its only child; zero if neither.
+Eigen::Vector3d boneDirection(const Skeleton& skeleton, int j) {
+  if (skeleton.joints[j].tail.norm() > 0) return skeleton.joints[j].tail;
+  int children = 0;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  for (const Joint& joint : skeleton.joints)
+    if (joint.parent == j) {
+      ++children;
+      offset = joint.restLocal.translation();
+    }
+  return children == 1 ? offset : Eigen::Vector3d::Zero();
+}
+
+// Height of the roots above the lowest joint along `up`, at rest (all roots: a BVH has one).
+double hipHeight(const std::vector<Eigen::Isometry3d>& rest, const Skeleton& skeleton, const Eigen::Vector3d& up) {
+  double root = -std::numeric_limits<double>::infinity(), lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < rest.size(); ++j) {
+    const double h = rest[j].translation().dot(up);
+    if (skeleton.joints[j].parent < 0) root = std::max(root, h);
+    lowest = std::min(lowest, h);
+  }
+  return root - lowest;
+}
+
+}  // namespace
+
+Retargeter::Retargeter(const Skeleton& source, const Skeleton& target, const JointMap& map,
+                       const RetargetOptions& options, const std::string& mapSource)
+    : target_(target), sourceRest_(source.restWorld()), targetRest_(target.restWorld()),
+      driver_(target.joints.size(), -1), alignment_(target.joints.size(), Eigen::Matrix3d::Identity()),
+      axes_(options.sourceAxes) {
+  if (!((axes_ * axes_.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-9 && axes_.determinant() > 0))
+    throw UsageError("retargeting: the source axes are not a rotation");
+  if (!(options.sourceUp.norm() > 0)) throw UsageError("retargeting: the up direction is zero");
+  int matched = 0;
+  for (const auto& [from, to] : map.pairs) {
+    const int s = source.find(from), t = target.find(to);
+    if (s < 0 || t < 0) {
+      skipped_.push_back(from + " -> " + to);
+      continue;
+    }
+    driver_[t] = s;
+    ++matched;
+    const Eigen::Vector3d ds = axes_ * (sourceRest_[s].linear() * boneDirection(source, s));
+    const Eigen::Vector3d dt = targetRest_[t].linear() * boneDirection(target, t);
+    if (options.alignRestDirections && ds.norm() > 0 && dt.norm() > 0)
+      alignment_[t] = Eigen::Quaterniond::FromTwoVectors(dt, ds).toRotationMatrix();
+  }
+  if (matched == 0) throw BadInput(mapSource, "names no joint pair present in both skeletons");
+  const Eigen::Vector3d up = options.sourceUp.normalized();
+  const double sourceHeight = hipHeight(sourceRest_, source, up);
+  const double targetHeight = hipHeight(targetRest_, target, axes_ * up);
+  if (sourceHeight > 0 && targetHeight > 0) rootScale_ = targetHeight / sourceHeight;
+}
+
+std::vector<Eigen::Isometry3d> Retargeter::pose(const std::vector<Eigen::Isometry3d>& sourceWorld) const {
+  if (sourceWorld.size() != sourceRest_.size())
+    throw UsageError("retargeting: a pose of " + std::to_string(sourceWorld.size()) + " joints for a skeleton of " +
+                     std::to_string(sourceRest_.size()));
+  std::vector<Eigen::Isometry3d> posed(target_.joints.size(), Eigen::Isometry3d::Identity());
+  for (std::size_t t = 0; t < posed.size(); ++t) {
+    const Joint& joint = target_.joints[t];
+    const int s = driver_[t];
+    const Eigen::Isometry3d parent = joint.parent < 0 ? Eigen::Isometry3d::Identity() : posed[joint.parent];
+    if (s < 0) {
+      posed[t] = parent * joint.restLocal;
+      continue;
+    }
+    const Eigen::Matrix3d delta =
+        axes_ * sourceWorld[s].linear() * sourceRest_[s].linear().transpose() * axes_.transpose();
+    posed[t].linear() = delta * alignment_[t] * targetRest_[t].linear();
+    posed[t].translation() =
+        joint.parent < 0
+            ? Eigen::Vector3d(targetRest_[t].translation() +
+                              rootScale_ * axes_ * (sourceWorld[s].translation() - sourceRest_[s].translation()))
+            : Eigen::Vector3d(parent * joint.restLocal.translation());
+  }
+  return posed;
+}
+
+}  // namespace vesalius::posing
