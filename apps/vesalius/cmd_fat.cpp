@@ -8,6 +8,7 @@
 #include "vesalius/fat/thickness_at_vertices.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/segmentation/label_ops.h"
 #include "vesalius/viz/slice_overlay.h"
 
 #include <algorithm>
@@ -44,10 +45,8 @@ void checkOutputs(const ForestOptions& o) {
 }
 
 fat::Mask maskOfLabel(const LabelMap& map, Label id, const std::string& role, const std::string& path) {
-  fat::Mask mask(map.labels.geometry, 0);
-  std::int64_t count = 0;
-  for (std::size_t v = 0; v < mask.values.size(); ++v) count += mask.values[v] = map.labels.values[v] == id;
-  if (count == 0)
+  fat::Mask mask = segmentation::maskOf(map.labels, id);
+  if (segmentation::countVoxels(mask) == 0)
     throw BadInput(path, "no voxel has the " + role + " label " + std::to_string(id) +
                              (map.table.find(id) ? " (" + map.table.find(id)->name + ")" : std::string()));
   return mask;

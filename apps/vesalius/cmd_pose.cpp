@@ -6,6 +6,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/io/image_io.h"
+#include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/text_file.h"
@@ -138,7 +139,7 @@ void runPose(const PoseOptions& o) {
     report.input("motion", o.motion);
     const Motion motion = io::readBvh(o.motion);
     posing::RetargetOptions retarget;
-    if (!o.motionLps) retarget.sourceAxes = posing::yUpToLps();
+    if (!o.motionLps) retarget.sourceAxes = io::yUpToLps();
     const posing::Retargeter retargeter(motion.skeleton, rig.skeleton, jointMap(o, motion.skeleton, rig), retarget,
                                         o.map.empty() ? "default joint map" : o.map);
     const auto [first, last] = frameRange(o, motion.frameCount());

@@ -4,6 +4,7 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/skeleton_io.h"
@@ -13,7 +14,6 @@
 #include "vesalius/posing/bone_capsules.h"
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/rotation_centers.h"
-#include "vesalius/posing/skeleton_pose.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
@@ -38,20 +38,20 @@ struct RigOptions {
 
 // MakeHuman's space (decimetres, +Y up, facing +Z) to ours (mm, LPS); the identity for "lps".
 TriMesh toLps(TriMesh mesh, bool makeHuman) {
-  if (makeHuman) mesh.V = (100.0 * mesh.V * posing::yUpToLps().transpose()).eval();
+  if (makeHuman) mesh.V = io::transformPoints(mesh.V, io::yUpToLps(), 100.0);
   return mesh;
 }
 
 Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
   if (fileExtension(o.skeleton) == ".bvh") {
     const Skeleton s = io::readBvh(o.skeleton).skeleton;
-    return makeHuman ? posing::transformSkeleton(s, posing::yUpToLps(), 100.0) : s;
+    return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
   }
   if (fileExtension(o.skeleton) != ".mhskel") throw UsageError("rig: --skeleton must be a .mhskel or .bvh file");
   const std::string base = o.baseMesh.empty() ? (fs::path(o.skeleton).parent_path() / "base.obj").string() : o.baseMesh;
   if (!fs::exists(base)) throw UsageError(o.skeleton + ": a MakeHuman skeleton needs its base mesh; pass --base-mesh");
   const Skeleton s = io::readMakeHumanSkeleton(o.skeleton, io::readTriMesh(base).V);
-  return makeHuman ? posing::transformSkeleton(s, posing::yUpToLps(), 100.0) : s;
+  return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
 }
 
 // Seed 001 §3.2: the inside of the skin as a voxel image under the size cap, its surface (closed, free

@@ -2,10 +2,10 @@
 #pragma once
 
 #include "vesalius/core/skeleton.h"
+#include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/skeleton_io.h"
-#include "vesalius/posing/skeleton_pose.h"
 
 #include <string>
 
@@ -21,7 +21,7 @@ inline const Skeleton& makeHumanSkeletonLps() {
   static const Skeleton skeleton = [] {
     const std::string body = std::string(VESALIUS_TESTDATA) + "/body/";
     const Skeleton mh = io::readMakeHumanSkeleton(body + "default.mhskel", io::readTriMesh(body + "base.obj").V);
-    return posing::transformSkeleton(mh, posing::yUpToLps(), 100.0);
+    return io::transformSkeleton(mh, io::yUpToLps(), 100.0);
   }();
   return skeleton;
 }

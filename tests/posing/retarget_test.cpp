@@ -25,7 +25,7 @@ posing::JointMap identityMap(const Skeleton& skeleton) {
 
 posing::RetargetOptions cmuOntoLps() {
   posing::RetargetOptions options;
-  options.sourceAxes = posing::yUpToLps();
+  options.sourceAxes = io::yUpToLps();
   return options;
 }
 
@@ -93,7 +93,7 @@ TEST(Retarget, RestDirectionsAlignToTheSourceRest) {
            {"LeftArm", "upperarm01.L"}, {"LeftUpLeg", "upperleg01.L"}, {"RightForeArm", "lowerarm01.R"}}) {
     const int s = rest.skeleton.find(from), t = target.find(to);
     const Eigen::Vector3d child = rest.skeleton.joints[s + 1].restLocal.translation();  // the only child
-    const Eigen::Vector3d ds = posing::yUpToLps() * source[s].linear() * child;
+    const Eigen::Vector3d ds = io::yUpToLps() * source[s].linear() * child;
     const Eigen::Vector3d dt = posed[t].linear() * target.joints[t].tail;
     EXPECT_LT(std::acos(std::clamp(ds.normalized().dot(dt.normalized()), -1.0, 1.0)), 1e-7) << to;
   }
