@@ -8,7 +8,7 @@ PACKAGES=(
   libinsighttoolkit5-dev libvtk9-dev libeigen3-dev libceres-dev libtet1.5-dev
   libopenvdb-dev libboost-iostreams-dev libsuitesparse-dev libopenblas-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb xauth clang libclang-rt-14-dev
+  libx11-dev xvfb xauth clang libclang-rt-14-dev
 )
 
 missing=()
