@@ -1,14 +1,21 @@
 // vesalius fat: subcutaneous fat thickness from segmented skin and fat (seed 000 §5).
 //   forest   the forest of shortest paths from the skin through the fat: a thickness image (mm on skin
 //            voxels) and, given a skin surface, the thickness at its vertices as a point attribute.
+//   erode    the skin surface moved inward by the thickness, along the forest's paths where given.
+//   texture  the thickness at a skin surface's vertices rasterized into its uv texture.
 #include "common.h"
+#include "thickness_input.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/fat/erode_skin.h"
 #include "vesalius/fat/fat_forest.h"
 #include "vesalius/fat/thickness_at_vertices.h"
+#include "vesalius/fat/thickness_texture.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/text_file.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/viz/rgb_image.h"
 #include "vesalius/viz/slice_overlay.h"
 
 #include <algorithm>
@@ -17,30 +24,35 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace vesalius::cli {
 
 namespace {
 
-struct ForestOptions {
+// Where the skin and fat masks come from, and the forest's options (shared by forest, erode, texture).
+struct ForestSource {
   std::string labels, table, skinLabel = "skin", fatLabel = "subcutaneous_fat", fatMask;
-  std::string out, surface, outMesh, png;
   double maxDistance = std::numeric_limits<double>::infinity();
   double gatherRadius = -1, vertexRadius = 0;
+};
+
+struct ForestOptions {
+  ForestSource source;
+  std::string out, surface, outMesh, png;
   CommonOptions common;
 };
 
 // Fails before any work if an output would replace an input or an existing file without --force.
-void checkOutputs(const ForestOptions& o) {
+void checkOutputs(const std::vector<std::string>& outs, const std::vector<std::string>& ins, bool force) {
   namespace fs = std::filesystem;
-  if (o.surface.empty() != o.outMesh.empty()) throw UsageError("fat forest: --surface and --out-mesh go together");
-  for (const std::string& out : {o.out, o.outMesh, o.png, o.common.report}) {
+  for (const std::string& out : outs) {
     if (out.empty()) continue;
-    for (const std::string& in : {o.labels, o.fatMask, o.surface, o.table})
+    for (const std::string& in : ins)
       if (!in.empty() && fs::exists(in) && fs::exists(out) && fs::equivalent(in, out))
         throw UsageError(out + ": is an input; choose another output");
-    if (fs::exists(out) && !o.common.force) throw UsageError(out + ": exists (use --force to replace it)");
+    if (fs::exists(out) && !force) throw UsageError(out + ": exists (use --force to replace it)");
   }
 }
 
@@ -73,14 +85,16 @@ nlohmann::json toJson(const Stats& s) {
           {"max_mm", s.max}, {"mean_mm", s.mean}};
 }
 
+// A viridis-like ramp of eight colours, dark to light, for thickness pictures.
+const std::array<viz::Rgb, 8> kRamp{{{{68, 1, 84}}, {{70, 50, 127}}, {{54, 92, 141}}, {{39, 127, 142}},
+                                     {{31, 161, 135}}, {{74, 194, 109}}, {{159, 218, 58}}, {{253, 231, 37}}}};
+
 // The thickness over three orthogonal slices (viz/slice_overlay.h): tissues in grey (fat light, other
 // labels dark), skin voxels in solid colours by thickness bins of 5 mm or more; the legend is the colour
 // bar. Slices pass through the centroid of the skin voxels that have fat under them.
 void writeThicknessPng(const std::string& path, const LabelMap& map, const fat::Mask& fatMask,
                        const fat::FatForest& forest, double upper, const WriteOptions& write) {
-  // Eight bins of a viridis-like ramp from 0 to `upper` (the 95th percentile), the last one open.
-  static const std::array<std::array<std::uint8_t, 3>, 8> ramp{{{{68, 1, 84}}, {{70, 50, 127}}, {{54, 92, 141}},
-      {{39, 127, 142}}, {{31, 161, 135}}, {{74, 194, 109}}, {{159, 218, 58}}, {{253, 231, 37}}}};
+  // Eight bins of the ramp from 0 to `upper` (the 95th percentile), the last one open.
   const double step = std::max(5.0, 5.0 * std::ceil(upper / 8.0 / 5.0));
   Image grey(map.labels.geometry, 0.0f);
   LabelMap bins{Grid<Label>(map.labels.geometry, 0), {}};
@@ -100,7 +114,7 @@ void writeThicknessPng(const std::string& path, const LabelMap& map, const fat::
   for (int b = 0; b < 8; ++b) {
     std::ostringstream name;
     name << "fat " << b * step << (b == 7 ? "+ mm" : "-" + std::to_string(int((b + 1) * step)) + " mm");
-    bins.table.add({Label(b + 1), name.str(), ramp[b]});
+    bins.table.add({Label(b + 1), name.str(), kRamp[b]});
   }
   viz::OverlayOptions options;
   options.window = 255, options.level = 127.5, options.opacity = 1.0, options.outlineOpacity = 1.0;
@@ -112,7 +126,7 @@ void writeThicknessPng(const std::string& path, const LabelMap& map, const fat::
 void runThicknessOnSurface(const ForestOptions& o, const fat::FatForest& forest, io::Report& report) {
   TriMesh mesh = io::readTriMesh(o.surface);
   fat::VertexThicknessOptions options;
-  options.radiusMm = o.vertexRadius;
+  options.radiusMm = o.source.vertexRadius;
   fat::VertexThickness t;
   {
     auto timer = report.time("thickness at vertices");
@@ -130,24 +144,26 @@ void runThicknessOnSurface(const ForestOptions& o, const fat::FatForest& forest,
             << " mm\n";
 }
 
-void runForest(const ForestOptions& o) {
-  checkOutputs(o);
-  io::Report report("fat forest");
+// The masks and the forest of a ForestSource, with their parameters in the report.
+struct LoadedForest {
+  LabelMap map;
+  fat::Mask skin, fat;
+  std::unique_ptr<fat::FatForest> forest;
+};
+
+LoadedForest loadForest(const ForestSource& o, io::Report& report, Progress& progress) {
+  LoadedForest l;
   report.input("labels", o.labels);
   if (!o.fatMask.empty()) report.input("fat_mask", o.fatMask);
-  if (!o.surface.empty()) report.input("surface", o.surface);
-  Progress progress(o.common.progressStyle());
-
-  const LabelMap map = io::readLabelMap(o.labels, o.table);
-  const Label skinId = resolveLabel(map, o.skinLabel, o.labels);
-  const fat::Mask skin = maskOfLabel(map, skinId, "skin", o.labels);
-  fat::Mask fatMask;
+  l.map = io::readLabelMap(o.labels, o.table);
+  const Label skinId = resolveLabel(l.map, o.skinLabel, o.labels);
+  l.skin = maskOfLabel(l.map, skinId, "skin", o.labels);
   if (o.fatMask.empty()) {
-    fatMask = maskOfLabel(map, resolveLabel(map, o.fatLabel, o.labels), "fat", o.labels);
+    l.fat = maskOfLabel(l.map, resolveLabel(l.map, o.fatLabel, o.labels), "fat", o.labels);
   } else {
     const LabelMap m = io::readLabelMap(o.fatMask);  // any nonzero voxel is fat
-    fatMask = fat::Mask(m.labels.geometry, 0);
-    for (std::size_t v = 0; v < fatMask.values.size(); ++v) fatMask.values[v] = m.labels.values[v] != 0;
+    l.fat = fat::Mask(m.labels.geometry, 0);
+    for (std::size_t v = 0; v < l.fat.values.size(); ++v) l.fat.values[v] = m.labels.values[v] != 0;
   }
   report.parameter("skin_label", skinId);
   report.parameter("fat", o.fatMask.empty() ? nlohmann::json(o.fatLabel) : nlohmann::json(o.fatMask));
@@ -158,10 +174,22 @@ void runForest(const ForestOptions& o) {
   options.maxDistanceMm = o.maxDistance;
   options.gatherRadiusMm = o.gatherRadius;
   progress.begin("fat forest", "shortest paths from the skin through the fat");
-  const fat::FatForest forest(skin, fatMask, options, o.fatMask.empty() ? o.labels : o.fatMask);
+  l.forest = std::make_unique<fat::FatForest>(l.skin, l.fat, options, o.fatMask.empty() ? o.labels : o.fatMask);
   progress.end();
+  report.stage("fat forest", l.forest->statistics().seconds);
+  return l;
+}
+
+void runForest(const ForestOptions& o) {
+  if (o.surface.empty() != o.outMesh.empty()) throw UsageError("fat forest: --surface and --out-mesh go together");
+  checkOutputs({o.out, o.outMesh, o.png, o.common.report},
+               {o.source.labels, o.source.fatMask, o.surface, o.source.table}, o.common.force);
+  io::Report report("fat forest");
+  if (!o.surface.empty()) report.input("surface", o.surface);
+  Progress progress(o.common.progressStyle());
+  const LoadedForest l = loadForest(o.source, report, progress);
+  const fat::FatForest& forest = *l.forest;
   const fat::FatForest::Statistics& fs = forest.statistics();
-  report.stage("fat forest", fs.seconds);
 
   Image thickness(forest.geometry(), 0.0f);
   thickness.values = forest.thickness().values;
@@ -170,8 +198,8 @@ void runForest(const ForestOptions& o) {
   report.output("thickness", o.out);
 
   std::vector<double> all, covered;
-  for (std::size_t v = 0; v < skin.values.size(); ++v) {
-    if (!skin.values[v]) continue;
+  for (std::size_t v = 0; v < l.skin.values.size(); ++v) {
+    if (!l.skin.values[v]) continue;
     all.push_back(forest.thickness().values[v]);
     if (all.back() > 0) covered.push_back(all.back());
   }
@@ -192,26 +220,39 @@ void runForest(const ForestOptions& o) {
             << fs.seconds << " s (" << std::llround(rate) << " voxels/s)\n";
 
   if (!o.png.empty()) {
-    writeThicknessPng(o.png, map, fatMask, forest, sCovered.p95, o.common.writeOptions());
+    writeThicknessPng(o.png, l.map, l.fat, forest, sCovered.p95, o.common.writeOptions());
     report.output("png", o.png);
   }
   if (!o.surface.empty()) runThicknessOnSurface(o, forest, report);
   o.common.finish(report);
 }
 
+// --labels and the forest's options, on any subcommand that builds a forest.
+void addForestSourceOptions(CLI::App& cmd, ForestSource& o, bool required) {
+  auto* labels = cmd.add_option("--labels", o.labels,
+                                "Label map with skin and fat classes (e.g. from 'vesalius segment', CT or MRI)");
+  if (required) labels->required();
+  cmd.add_option("--table", o.table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
+  cmd.add_option("--skin-label", o.skinLabel, "Skin label id or name")->capture_default_str();
+  cmd.add_option("--fat-label", o.fatLabel, "Fat label id or name")->capture_default_str();
+  cmd.add_option("--fat-mask", o.fatMask,
+                 "Fat from a mask on the same grid instead (any nonzero voxel; e.g. TotalSegmentator's "
+                 "subcutaneous_fat.nii.gz)");
+  cmd.add_option("--max-distance", o.maxDistance, "Leave fat farther than this from the skin unreached (mm)");
+  cmd.add_option("--gather-radius", o.gatherRadius,
+                 "A skin voxel takes the largest tree thickness within this radius (mm); -1: one voxel "
+                 "diagonal; 0: the paper's per-tree value")
+      ->capture_default_str();
+  cmd.add_option("--vertex-radius", o.vertexRadius,
+                 "Skin voxels within this distance of a vertex give its thickness (mm); 0: one voxel diagonal")
+      ->capture_default_str();
+}
+
 void addForestCommand(CLI::App& fatCommand) {
   auto o = std::make_shared<ForestOptions>();
   CLI::App* cmd = fatCommand.add_subcommand(
       "forest", "Fat thickness under the skin by a forest of shortest paths from skin voxels through fat (seed 000 §5)");
-  cmd->add_option("--labels", o->labels,
-                  "Label map with skin and fat classes (e.g. from 'vesalius segment', CT or MRI)")
-      ->required();
-  cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
-  cmd->add_option("--skin-label", o->skinLabel, "Skin label id or name")->capture_default_str();
-  cmd->add_option("--fat-label", o->fatLabel, "Fat label id or name")->capture_default_str();
-  cmd->add_option("--fat-mask", o->fatMask,
-                  "Fat from a mask on the same grid instead (any nonzero voxel; e.g. TotalSegmentator's "
-                  "subcutaneous_fat.nii.gz)");
+  addForestSourceOptions(*cmd, o->source, true);
   cmd->add_option("--out", o->out, "Thickness image: float mm on skin voxels, 0 elsewhere (.nii.gz, .nrrd, .mha)")
       ->required();
   cmd->add_option("--surface", o->surface, "Skin surface mesh (LPS mm) to carry the thickness to");
@@ -219,14 +260,6 @@ void addForestCommand(CLI::App& fatCommand) {
                   "The surface with point attributes fat_thickness (mm) and fat_thickness_source "
                   "(1 measured, 2 filled from neighbours, 0 none); .vtp or .vtk keep them");
   cmd->add_option("--png", o->png, "Picture of the thickness on the skin over three orthogonal slices");
-  cmd->add_option("--max-distance", o->maxDistance, "Leave fat farther than this from the skin unreached (mm)");
-  cmd->add_option("--gather-radius", o->gatherRadius,
-                  "A skin voxel takes the largest tree thickness within this radius (mm); -1: one voxel "
-                  "diagonal; 0: the paper's per-tree value")
-      ->capture_default_str();
-  cmd->add_option("--vertex-radius", o->vertexRadius,
-                  "Skin voxels within this distance of a vertex give its thickness (mm); 0: one voxel diagonal")
-      ->capture_default_str();
   addCommonOptions(*cmd, o->common);
   cmd->footer(
       "Example:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct --out ct.nii.gz\n"
@@ -235,12 +268,227 @@ void addForestCommand(CLI::App& fatCommand) {
   cmd->callback([o] { runForest(*o); });
 }
 
+// Thickness at the skin's vertices from --thickness, else from the forest (thicknessAtVertices).
+Eigen::VectorXd vertexThickness(const std::string& spec, const TriMesh& skin, const std::string& skinPath,
+                                const LoadedForest& l, const ForestSource& source, io::Report& report) {
+  if (!spec.empty()) {
+    std::string kind;
+    Eigen::VectorXd t = readThickness(spec, skin, skinPath, kind);
+    report.parameter("thickness", spec);
+    report.parameter("thickness_from", kind);
+    return t;
+  }
+  fat::VertexThicknessOptions options;
+  options.radiusMm = source.vertexRadius;
+  const fat::VertexThickness t = fat::thicknessAtVertices(*l.forest, skin.V, skin.F, options);
+  report.parameter("thickness_from", "forest");
+  report.metric("vertices", {{"measured", t.measured}, {"filled", t.filled}, {"unreached", t.unreached}});
+  return t.thickness;
+}
+
+Stats stats(const Eigen::VectorXd& v) { return stats(std::vector<double>(v.data(), v.data() + v.size())); }
+
+struct ErodeOptions {
+  ForestSource source;
+  std::string skin, thickness, out;
+  double pathRadius = 0, maxFraction = 0.5;
+  CommonOptions common;
+};
+
+void runErode(const ErodeOptions& o) {
+  if (o.thickness.empty() && o.source.labels.empty()) throw UsageError("fat erode: give --thickness, --labels or both");
+  checkOutputs({o.out, o.common.report}, {o.skin, o.thickness, o.source.labels, o.source.fatMask, o.source.table},
+               o.common.force);
+  io::Report report("fat erode");
+  report.input("skin", o.skin);
+  Progress progress(o.common.progressStyle());
+  TriMesh mesh = io::readTriMesh(o.skin);
+  LoadedForest l;
+  if (!o.source.labels.empty()) l = loadForest(o.source, report, progress);
+  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, report);
+
+  fat::ErodeSkinOptions options;
+  options.pathRadiusMm = o.pathRadius;
+  options.maxFractionOfInnerRadius = o.maxFraction;
+  options.source = o.thickness.empty() ? o.source.labels : o.thickness;
+  report.parameter("path_radius_mm", o.pathRadius);
+  report.parameter("max_fraction_of_inner_radius",
+                   std::isfinite(o.maxFraction) ? nlohmann::json(o.maxFraction) : nullptr);
+  fat::ErodedSkin e;
+  {
+    auto timer = report.time("erode");
+    progress.begin("erode", "moving the skin inward by the fat thickness");
+    e = fat::erodeSkin(mesh.V, mesh.F, t, l.forest.get(), options);
+    progress.end();
+  }
+  mesh.V = e.V;
+  mesh.vertexAttributes.real["fat_thickness"] = t;
+  mesh.vertexAttributes.real["erosion_mm"] = e.displacement;
+  mesh.vertexAttributes.real["inner_radius_mm"] = e.innerRadius;
+  mesh.vertexAttributes.integer["erosion_direction"] = e.directionSource;  // 1 forest path, 2 normal, 0 none
+  io::writeTriMesh(o.out, mesh, io::MeshWriteOptions{o.common.writeOptions()});
+  report.output("mesh", o.out);
+
+  report.metric("thickness", toJson(stats(t)));
+  report.metric("displacement", toJson(stats(e.displacement)));
+  report.metric("moved_along_paths", e.movedAlongPaths);
+  report.metric("moved_along_normals", e.movedAlongNormals);
+  report.metric("limited_by_inner_radius", e.limited);
+  report.metric("moved_less_than_thickness", e.reduced);
+  report.metric("repaired", e.repaired);
+  report.metric("repair_rounds", e.repairRounds);
+  report.metric("self_intersections", {{"before", e.selfIntersectionsBefore}, {"after", e.selfIntersectionsAfter},
+                                       {"new", e.newSelfIntersections}});
+  std::cout << o.out << ": " << mesh.V.rows() << " vertices moved inward by mean " << e.meanDisplacement << " mm (max "
+            << e.maxDisplacement << " mm): " << e.movedAlongPaths << " along forest paths, " << e.movedAlongNormals
+            << " along normals; " << e.limited << " limited by the room inside, " << e.reduced
+            << " moved less than their thickness; crossing triangle pairs " << e.selfIntersectionsBefore << " before, "
+            << e.selfIntersectionsAfter << " after\n";
+  if (e.newSelfIntersections > 0)
+    std::cerr << "vesalius: warning: " << e.newSelfIntersections << " pairs of triangles cross after erosion that did "
+              << "not before (" << e.repairRounds << " repair rounds)\n";
+  o.common.finish(report);
+}
+
+void addErodeCommand(CLI::App& fatCommand) {
+  auto o = std::make_shared<ErodeOptions>();
+  CLI::App* cmd = fatCommand.add_subcommand(
+      "erode", "Move a skin surface inward by the fat thickness, along the forest's paths (seed 000 §5, Fig. 2.b)");
+  cmd->add_option("--skin", o->skin, "Skin (body) surface mesh, closed, LPS mm")->required();
+  cmd->add_option("--thickness", o->thickness,
+                  "Fat thickness: a number (mm), a texture image read at the skin's uv (from 'fat texture'), a mesh "
+                  "with point attribute fat_thickness, or a text file of one value per vertex; default: from "
+                  "the forest of --labels");
+  addForestSourceOptions(*cmd, o->source, false);
+  cmd->add_option("--out", o->out,
+                  "Eroded mesh, same topology, with point attributes fat_thickness, erosion_mm, inner_radius_mm "
+                  "and erosion_direction (1 forest path, 2 normal, 0 none); .vtp or .vtk keep them")
+      ->required();
+  cmd->add_option("--path-radius", o->pathRadius,
+                  "Skin voxels within this distance of a vertex offer their forest paths (mm); 0: two voxel diagonals")
+      ->capture_default_str();
+  cmd->add_option("--max-fraction", o->maxFraction,
+                  "A vertex moves at most this fraction of the largest inner ball touching it (0 to 1; inf: no limit)")
+      ->capture_default_str();
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Example:\n  vesalius fat erode --skin body.vtp --labels ct.nii.gz --out eroded.vtp --report erode.json\n"
+      "  vesalius fat erode --skin body.obj --thickness 5 --out eroded.obj");
+  cmd->callback([o] { runErode(*o); });
+}
+
+// The ramp at f in [0, 1], linear between its colours.
+viz::Rgb rampColour(double f) {
+  const double x = std::clamp(f, 0.0, 1.0) * double(kRamp.size() - 1);
+  const std::size_t i = std::min(std::size_t(x), kRamp.size() - 2);
+  viz::Rgb c;
+  for (int k = 0; k < 3; ++k)
+    c[k] = std::uint8_t(std::lround(kRamp[i][k] + (x - double(i)) * (kRamp[i + 1][k] - kRamp[i][k])));
+  return c;
+}
+
+// The texture as a picture, v up: thickness 0 to `upper` along the ramp, filled texels at half brightness.
+void writeTexturePng(const std::string& path, const fat::ThicknessTexture& t, double upper, const WriteOptions& write) {
+  viz::RgbImage image(t.width, t.height, {0, 0, 0});
+  for (int y = 0; y < t.height; ++y)
+    for (int x = 0; x < t.width; ++x) {
+      viz::Rgb c = rampColour(upper > 0 ? t.at(x, y) / upper : 0.0);
+      if (t.coverage[std::size_t(x) + std::size_t(t.width) * y] == fat::ThicknessTexture::kFilled)
+        for (auto& channel : c) channel = std::uint8_t(channel / 2);
+      image.set(x, t.height - 1 - y, c);
+    }
+  viz::writePng(path, image, write);
+}
+
+struct TextureOptions {
+  ForestSource source;
+  std::string skin, thickness, out, png;
+  int size = 1024;
+  CommonOptions common;
+};
+
+void runTexture(const TextureOptions& o) {
+  if (o.thickness.empty() && o.source.labels.empty()) throw UsageError("fat texture: give --thickness or --labels");
+  checkOutputs({o.out, o.png, o.common.report},
+               {o.skin, o.thickness, o.source.labels, o.source.fatMask, o.source.table}, o.common.force);
+  io::Report report("fat texture");
+  report.input("skin", o.skin);
+  Progress progress(o.common.progressStyle());
+  const TriMesh mesh = io::readTriMesh(o.skin);
+  if (mesh.UV.rows() == 0) throw BadInput(o.skin, "the mesh has no texture coordinates (uv)");
+  LoadedForest l;
+  if (o.thickness.empty()) l = loadForest(o.source, report, progress);
+  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, report);
+
+  fat::ThicknessTextureOptions options;
+  options.width = options.height = o.size;
+  report.parameter("size", o.size);
+  fat::ThicknessTexture tex;
+  {
+    auto timer = report.time("texture");
+    progress.begin("texture", "rasterizing the thickness over the uv charts");
+    tex = fat::rasterizeThickness(mesh, t, options, o.skin);
+    progress.end();
+  }
+  GridGeometry uvSquare;  // physical space = the uv square: texel centres at ((x + 0.5) / W, (y + 0.5) / H)
+  uvSquare.size = Eigen::Vector3i(o.size, o.size, 1);
+  uvSquare.spacing = Eigen::Vector3d(1.0 / o.size, 1.0 / o.size, 1);
+  uvSquare.origin = Eigen::Vector3d(0.5 / o.size, 0.5 / o.size, 0);
+  Image image(uvSquare, 0.0f);
+  image.values = tex.values;
+  image.fileType = PixelType::Float32;
+  io::writeScan(o.out, image, o.common.writeOptions());
+  report.output("texture", o.out);
+  const Stats s = stats(t);
+  if (!o.png.empty()) {
+    writeTexturePng(o.png, tex, s.p95, o.common.writeOptions());
+    report.output("png", o.png);
+  }
+  const Eigen::VectorXd back = fat::sampleTextureAtVertices(tex, mesh, o.skin);
+  const Stats roundTrip = stats((back - t).cwiseAbs().eval());
+  report.metric("vertex_thickness", toJson(s));
+  report.metric("texels", {{"inside", tex.inside}, {"rim", tex.rim}, {"filled", tex.filled},
+                           {"overlapping", tex.overlapping}, {"fill_sweeps", tex.sweeps}});
+  report.metric("vertex_round_trip_error", toJson(roundTrip));
+  std::cout << o.out << ": " << o.size << " x " << o.size << " thickness texture, " << tex.inside
+            << " texels inside uv triangles, " << tex.rim << " on their rims, " << tex.filled << " filled ("
+            << tex.overlapping << " in overlapping charts); read back at the " << mesh.V.rows()
+            << " vertices: median error " << roundTrip.median << " mm, 95 % " << roundTrip.p95 << " mm\n";
+  o.common.finish(report);
+}
+
+void addTextureCommand(CLI::App& fatCommand) {
+  auto o = std::make_shared<TextureOptions>();
+  CLI::App* cmd = fatCommand.add_subcommand(
+      "texture", "Rasterize the fat thickness at a skin's vertices into its uv texture (seed 000 §5)");
+  cmd->add_option("--skin", o->skin, "Skin surface mesh with texture coordinates (.obj, .vtp, .ply), LPS mm")
+      ->required();
+  cmd->add_option("--thickness", o->thickness,
+                  "Fat thickness at the vertices instead of a forest: a number (mm), a mesh with point attribute "
+                  "fat_thickness, or a text file of one value per vertex");
+  addForestSourceOptions(*cmd, o->source, false);
+  cmd->add_option("--size", o->size, "Texture width and height in texels")->capture_default_str()->check(
+      CLI::Range(1, 16384));
+  cmd->add_option("--out", o->out,
+                  "Float texture (.nrrd, .nii.gz, .mha): W x H x 1, thickness in mm; physical space: the uv square")
+      ->required();
+  cmd->add_option("--png", o->png, "Picture of the texture (v up), filled texels at half brightness");
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Example:\n"
+      "  vesalius fat texture --skin skin_uv.obj --labels ct.nii.gz --size 1024 --out fat.nrrd --png fat.png\n"
+      "  vesalius fat erode --skin other_skin_uv.obj --thickness fat.nrrd --out eroded.vtp");
+  cmd->callback([o] { runTexture(*o); });
+}
 }  // namespace
 
 void addFatCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("fat", "Subcutaneous fat: thickness from segmented skin and fat (seed 000 §5)");
+  CLI::App* cmd = app.add_subcommand(
+      "fat", "Subcutaneous fat: thickness from segmented skin and fat, erosion, texture (seed 000 §5)");
   cmd->require_subcommand(1);
   addForestCommand(*cmd);
+  addErodeCommand(*cmd);
+  addTextureCommand(*cmd);
 }
 
 }  // namespace vesalius::cli

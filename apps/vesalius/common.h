@@ -43,5 +43,7 @@ void addDemoCommand(CLI::App& app);
 void addRigCommand(CLI::App& app);
 void addPoseCommand(CLI::App& app);
 void addFatCommand(CLI::App& app);
+void addReferenceCommand(CLI::App& app);
+void addTransferCommand(CLI::App& app);
 
 }  // namespace vesalius::cli

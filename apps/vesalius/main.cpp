@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   vesalius::cli::addRigCommand(app);
   vesalius::cli::addPoseCommand(app);
   vesalius::cli::addFatCommand(app);
+  vesalius::cli::addReferenceCommand(app);
+  vesalius::cli::addTransferCommand(app);
   vesalius::cli::addDemoCommand(app);
 
   try {

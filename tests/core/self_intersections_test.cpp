@@ -14,7 +14,6 @@ namespace vesalius {
 namespace {
 
 using Pairs = std::vector<std::pair<int, int>>;
-using test::concatenate;
 using test::sphere;
 
 TriMesh tetSurface(const Eigen::Vector3d& shift) {

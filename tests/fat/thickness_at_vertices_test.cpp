@@ -106,7 +106,7 @@ TEST(ThicknessAtVertices, VerticesPastTheMasksAreFilledFromNeighboursAndCounted)
     EXPECT_LE(t.thickness[v], hi + 1e-9);
   }
   // A mesh component far from any skin is reached by nothing: 0, counted.
-  const TriMesh far = test::concatenate(mesh, test::sphere(1, 5, sh.centre + Eigen::Vector3d(500, 0, 0)));
+  const TriMesh far = concatenate(mesh, test::sphere(1, 5, sh.centre + Eigen::Vector3d(500, 0, 0)));
   const VertexThickness u = thicknessAtVertices(forest, far.V, far.F);
   EXPECT_EQ(u.unreached, 18);  // an octahedron split once: 18 vertices
   EXPECT_EQ(u.thickness.tail(18).cwiseAbs().maxCoeff(), 0.0);

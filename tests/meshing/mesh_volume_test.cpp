@@ -123,7 +123,7 @@ TEST(MeshVolume, PiecesFacingDifferentWaysStillGiveBothInsides) {
   const TriMesh a = test::sphere(4, 6.0, kCentre);
   TriMesh b = test::sphere(4, 4.0, kCentre + Eigen::Vector3d(0, 0, 14.0));
   b.F.col(1).swap(b.F.col(2));
-  const TriMesh both = test::concatenate(a, b);
+  const TriMesh both = concatenate(a, b);
   GridGeometry g;
   g.size = Eigen::Vector3i(40, 40, 70);
   g.spacing = Eigen::Vector3d::Constant(0.5);

@@ -91,7 +91,7 @@ TEST(SpreadSurfacePoints, EvenlySpread) {
 
 // Even spreading is by area: spheres of radius 10 and 5 (areas 4 : 1) get 4/5 and 1/5 of the points.
 TEST(SpreadSurfacePoints, PointsFollowTheArea) {
-  const TriMesh two = test::concatenate(sphere(), test::sphere(5, 5.0, Eigen::Vector3d(40, 0, 0)));
+  const TriMesh two = concatenate(sphere(), test::sphere(5, 5.0, Eigen::Vector3d(40, 0, 0)));
   const MatrixX3d P = spreadSurfacePoints(two, 250, 7);
   const long onSmall = (P.col(0).array() > 30).count();
   RecordProperty("points_on_small_sphere", std::to_string(onSmall));

@@ -90,7 +90,7 @@ TEST(Tetrahedralize, NestedSpheresGiveTwoConformingRegions) {
 
 TEST(Tetrahedralize, CavityOfAHollowShellIsLeftEmpty) {
   const TriMesh outer = test::sphere(3, 10.0), inner = test::sphere(3, 5.0);
-  const TriMesh shell = test::concatenate(outer, flipped(inner));
+  const TriMesh shell = concatenate(outer, flipped(inner));
   const TetMesh m = meshing::tetrahedralize(shell);
   const double expected = enclosedVolume(shell.V, shell.F);
   EXPECT_NEAR(tetVolumes(m.V, m.T).sum(), expected, 1e-9 * expected);
@@ -99,7 +99,7 @@ TEST(Tetrahedralize, CavityOfAHollowShellIsLeftEmpty) {
 
 TEST(Tetrahedralize, CavityOfAHollowInsideABodyBelongsToTheBody) {
   // A hollow bone in a body: the marrow cavity is body tissue, so the mesh fills the whole body.
-  const TriMesh body = test::sphere(3, 20.0), bone = test::concatenate(test::sphere(3, 10.0), flipped(test::sphere(3, 5.0)));
+  const TriMesh body = test::sphere(3, 20.0), bone = concatenate(test::sphere(3, 10.0), flipped(test::sphere(3, 5.0)));
   const TetMesh m = meshing::tetrahedralizeRegions({{body, 1, "body"}, {bone, 2, "bone"}});
   const double bodyVolume = enclosedVolume(body.V, body.F), boneVolume = enclosedVolume(bone.V, bone.F);
   EXPECT_NEAR(tetVolumes(m.V, m.T).sum(), bodyVolume, 1e-9 * bodyVolume);
@@ -112,7 +112,7 @@ TEST(Tetrahedralize, CavityOfAHollowInsideABodyBelongsToTheBody) {
 }
 
 TEST(Tetrahedralize, PartsApartAreBothFilled) {
-  const TriMesh two = test::concatenate(test::sphere(2, 3.0), test::sphere(2, 2.0, {10, 0, 0}));
+  const TriMesh two = concatenate(test::sphere(2, 3.0), test::sphere(2, 2.0, {10, 0, 0}));
   const TetMesh m = meshing::tetrahedralize(two);
   EXPECT_NEAR(tetVolumes(m.V, m.T).sum(), enclosedVolume(two.V, two.F), 1e-9 * enclosedVolume(two.V, two.F));
 }
@@ -121,14 +121,14 @@ TEST(Tetrahedralize, RefusesOpenAndCrossingSurfaces) {
   TriMesh open = test::sphere(2, 10.0);
   open.F.conservativeResize(open.F.rows() - 1, 3);
   expectBadInput([&] { meshing::tetrahedralize(open, {}, "open.stl"); }, "open.stl: open surface (3 boundary edges)");
-  const TriMesh crossing = test::concatenate(test::sphere(2, 3.0), test::sphere(2, 3.0, {2, 0, 0}));
+  const TriMesh crossing = concatenate(test::sphere(2, 3.0), test::sphere(2, 3.0, {2, 0, 0}));
   expectBadInput([&] { meshing::tetrahedralize(crossing, {}, "two.stl"); }, "two.stl: self-intersecting surface");
   expectBadInput(
       [&] {
         meshing::tetrahedralizeRegions({{test::sphere(2, 3.0), 1, "body"}, {test::sphere(2, 3.0, {2, 0, 0}), 2, "bone"}});
       },
       "body: intersects bone");
-  TriMesh nonManifold = test::concatenate(test::sphere(1), test::sphere(1, 1.0, {2, 0, 0}));
+  TriMesh nonManifold = concatenate(test::sphere(1), test::sphere(1, 1.0, {2, 0, 0}));
   nonManifold.F.row(nonManifold.F.rows() - 1) = nonManifold.F.row(0);  // a triangle repeated
   expectBadInput([&] { meshing::checkTetgenInput({{nonManifold, 1, "dup"}}); }, "dup: ");
 }

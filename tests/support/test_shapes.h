@@ -1,4 +1,4 @@
-// Closed surfaces built in tests: an octahedron-based sphere and mesh concatenation.
+// Closed surfaces built in tests: an octahedron-based sphere.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -37,16 +37,6 @@ inline TriMesh sphere(int levels, double radius = 1.0, const Eigen::Vector3d& ce
   for (std::size_t i = 0; i < v.size(); ++i) m.V.row(Eigen::Index(i)) = (centre + radius * v[i]).transpose();
   m.F.resize(Eigen::Index(f.size()), 3);
   for (std::size_t i = 0; i < f.size(); ++i) m.F.row(Eigen::Index(i)) << f[i][0], f[i][1], f[i][2];
-  return m;
-}
-
-// Both meshes as one (b's indices shifted past a's vertices); attributes are dropped.
-inline TriMesh concatenate(const TriMesh& a, const TriMesh& b) {
-  TriMesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + int(a.V.rows())).matrix();
   return m;
 }
 

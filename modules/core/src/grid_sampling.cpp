@@ -10,7 +10,10 @@ bool insideVoxels(const Eigen::Vector3d& index, const Eigen::Vector3i& size) {
   return (index.array() >= -0.5).all() && (index.array() <= size.cast<double>().array() - 0.5).all();
 }
 
-double sampleTrilinear(const Grid<float>& grid, const Eigen::Vector3d& index) {
+namespace {
+
+template <class T>
+double trilinear(const Grid<T>& grid, const Eigen::Vector3d& index) {
   const Eigen::Vector3i& size = grid.geometry.size;
   int low[3], high[3];
   double t[3];
@@ -33,5 +36,23 @@ double sampleTrilinear(const Grid<float>& grid, const Eigen::Vector3d& index) {
   }
   return value;
 }
+
+}  // namespace
+
+double sampleTrilinear(const Grid<float>& grid, const Eigen::Vector3d& index) { return trilinear(grid, index); }
+
+IndexBox indexBoxAroundBall(const GridGeometry& geometry, const Eigen::Matrix3d& indexPerWorld,
+                            const Eigen::Vector3d& p, double radius) {
+  const Eigen::Vector3d c = geometry.worldToIndex(p);
+  IndexBox box;
+  for (int a = 0; a < 3; ++a) {
+    const double reach = radius * indexPerWorld.row(a).norm();
+    box.lo[a] = std::max(0, int(std::ceil(c[a] - reach)));
+    box.hi[a] = std::min(geometry.size[a] - 1, int(std::floor(c[a] + reach)));
+  }
+  return box;
+}
+
+double sampleTrilinear(const Grid<double>& grid, const Eigen::Vector3d& index) { return trilinear(grid, index); }
 
 }  // namespace vesalius

@@ -50,6 +50,15 @@ void TetMesh::validate(const std::string& source) const {
   faceAttributes.checkRows(F.rows(), source);
 }
 
+TriMesh concatenate(const TriMesh& a, const TriMesh& b) {
+  TriMesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + int(a.V.rows())).matrix();
+  return m;
+}
+
 Eigen::VectorXd tetVolumes(const MatrixX3d& V, const MatrixX4i& T) {
   Eigen::VectorXd volumes(T.rows());
   for (Eigen::Index t = 0; t < T.rows(); ++t) {

@@ -1,6 +1,7 @@
 #include "vesalius/fat/thickness_at_vertices.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/grid_sampling.h"
 
 #include <Eigen/LU>
 #include <tbb/parallel_for.h>
@@ -15,18 +16,10 @@ namespace {
 
 using Index = Eigen::Index;
 
-// Largest thickness of the skin voxels within `radius` of `p`, or NaN if there are none. The index box
-// bounding the ball: a world offset r maps to index offset M⁻¹ r, whose i-th component is at most
-// radius · |row i of M⁻¹|.
+// Largest thickness of the skin voxels within `radius` of `p`, or NaN if there are none.
 double largestNearby(const FatForest& forest, const Eigen::Matrix3d& Minv, const Eigen::Vector3d& p, double radius) {
   const GridGeometry& g = forest.geometry();
-  const Eigen::Vector3d c = g.worldToIndex(p);
-  Eigen::Vector3i lo, hi;
-  for (int a = 0; a < 3; ++a) {
-    const double reach = radius * Minv.row(a).norm();
-    lo[a] = std::max(0, int(std::ceil(c[a] - reach)));
-    hi[a] = std::min(g.size[a] - 1, int(std::floor(c[a] + reach)));
-  }
+  const auto [lo, hi] = indexBoxAroundBall(g, Minv, p, radius);
   double best = std::numeric_limits<double>::quiet_NaN();
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)

@@ -13,6 +13,14 @@ Eigen::Matrix3d yUpToLps() {
   return axes;
 }
 
+Eigen::Matrix3d openSimToLps() {
+  Eigen::Matrix3d axes;
+  axes << 0, 0, -1,  //
+      -1, 0, 0,      //
+      0, 1, 0;
+  return axes;
+}
+
 MatrixX3d transformPoints(const MatrixX3d& P, const Eigen::Matrix3d& axes, double scale) {
   return scale * P * axes.transpose();
 }

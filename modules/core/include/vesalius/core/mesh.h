@@ -43,6 +43,9 @@ struct TetMesh {
   void validate(const std::string& source) const;
 };
 
+// Both meshes as one (b's indices shifted past a's vertices); uv and attributes are dropped.
+TriMesh concatenate(const TriMesh& a, const TriMesh& b);
+
 // Signed volume of each tet (#T): positive for the orientation above.
 Eigen::VectorXd tetVolumes(const MatrixX3d& V, const MatrixX4i& T);
 

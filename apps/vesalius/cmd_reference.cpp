@@ -1,0 +1,253 @@
+// vesalius reference torso: a reference anatomy for anatomy transfer (seed 000 §3, Fig. 2.c) built from a
+// labelled CT: the body's surface as the skin, every label of the segmentation as a bone, muscle or organ.
+#include "common.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/io/body_axes.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/skeleton_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/segmentation/label_ops.h"
+#include "vesalius/transfer/body_frame.h"
+#include "vesalius/transfer/skeleton_placement.h"
+
+#include <filesystem>
+
+#include <iostream>
+#include <map>
+#include <regex>
+
+namespace vesalius::cli {
+
+namespace {
+
+struct ReferenceOptions {
+  std::string scan, labels, table, out, name;
+  int skinFaces = 20000, tissueFaces = 3000;
+  CommonOptions common;
+};
+
+struct FullBodyOptions {
+  std::string skin, skeleton, baseMesh, model, out;
+  CommonOptions common;
+};
+
+// TotalSegmentator's names (labels_total_v1.tsv, v2) sorted into the kinds, bone groups and symmetry of
+// seed 000 §8: the trunk (spine, sternum, pelvis, rib cage, skull) moves symmetrically; paired limb bones
+// move freely. Each vertebra is a group of its own; the ribs and sternum are the rib cage; hips and sacrum
+// the pelvis.
+void classify(ReferenceTissue& tissue) {
+  const std::string& n = tissue.name;
+  const auto matches = [&n](const char* pattern) { return std::regex_match(n, std::regex(pattern)); };
+  if (matches("(vertebrae_.*|sacrum|hip_(left|right)|rib_(left|right)_.*|sternum|skull|costal_cartilages)")) {
+    tissue.kind = TissueKind::Bone;
+    tissue.symmetric = true;
+    tissue.group = matches("vertebrae_.*") ? n
+                   : matches("(sacrum|hip_.*)") ? "pelvis"
+                   : matches("skull") ? "skull" : "rib_cage";
+  } else if (matches("(femur|humerus|scapula|clavicula|tibia|fibula|patella|radius|ulna)_.*")) {
+    tissue.kind = TissueKind::Bone;
+  } else if (matches("(gluteus|iliopsoas|autochthon)_.*")) {
+    tissue.kind = TissueKind::Muscle;
+  } else {
+    tissue.kind = TissueKind::Organ;
+  }
+}
+
+// The sagittal plane from the labels that come in left/right pairs: its normal the mean direction from
+// each right part's centroid to its left partner's, through the mean of their midpoints.
+Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const std::string& source) {
+  std::map<std::string, Eigen::Vector3d> centroid;
+  for (const ReferenceTissue& t : tissues) centroid[t.name] = t.mesh.V.colwise().mean().transpose();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
+  int pairs = 0;
+  const std::regex left("(.*)left(.*)");
+  for (const auto& [name, c] : centroid) {
+    std::smatch m;
+    if (!std::regex_match(name, m, left)) continue;
+    const auto partner = centroid.find(m[1].str() + "right" + m[2].str());
+    if (partner == centroid.end()) continue;
+    normal += (c - partner->second).normalized();
+    point += 0.5 * (c + partner->second);
+    ++pairs;
+  }
+  if (pairs == 0) throw BadInput(source, "no left/right pair of labels to find the sagittal plane from");
+  return {point / pairs, normal.normalized()};
+}
+
+// Skin vertices on the caps where the scan's first or last axial slice cut the body: beyond that slice's
+// centre (the surface of a mask that touches the volume's end closes half a voxel past it).
+std::vector<int> cutVertices(const TriMesh& skin, const segmentation::Mask& body) {
+  const GridGeometry& g = body.geometry;
+  const int axis = segmentation::axialAxis(g);
+  const int last = g.size[axis] - 1;
+  bool touchesFirst = false, touchesLast = false;
+  for (int k = 0; k < g.size.z(); ++k)
+    for (int j = 0; j < g.size.y(); ++j)
+      for (int i = 0; i < g.size.x(); ++i) {
+        if (!body.at(i, j, k)) continue;
+        const int along = Eigen::Vector3i(i, j, k)[axis];
+        touchesFirst |= along == 0, touchesLast |= along == last;
+      }
+  std::vector<int> cut;
+  for (Eigen::Index v = 0; v < skin.V.rows(); ++v) {
+    const double along = g.worldToIndex(skin.V.row(v).transpose())[axis];
+    if ((touchesFirst && along < -0.25) || (touchesLast && along > last + 0.25)) cut.push_back(int(v));
+  }
+  return cut;
+}
+
+void runReference(const ReferenceOptions& o) {
+  io::Report report("reference torso");
+  report.input("scan", o.scan);
+  report.input("labels", o.labels);
+  report.parameter("skin_faces", o.skinFaces);
+  report.parameter("tissue_faces", o.tissueFaces);
+  Progress progress(o.common.progressStyle());
+  const Image ct = io::readScan(o.scan);
+  const LabelMap labels = io::readLabelMap(o.labels, o.table);
+  if (labels.labels.geometry.size != ct.geometry.size)
+    throw BadInput(o.labels, "the label map's grid differs from the scan's (" + o.scan + ")");
+
+  ReferenceAnatomy anatomy;
+  anatomy.name = o.name.empty() ? "torso (" + o.scan + ")" : o.name;
+  meshing::SurfaceOptions skinSurface;
+  skinSurface.targetFaces = o.skinFaces;
+  {
+    auto timer = report.time("skin");
+    progress.begin("skin", "body mask and its surface");
+    const segmentation::Mask body = segmentation::segmentCtBody(ct, {});
+    anatomy.skin = meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, skinSurface);
+    anatomy.skinCutVertices = cutVertices(anatomy.skin, body);
+    progress.end();
+  }
+  meshing::SurfaceOptions tissueSurface;
+  tissueSurface.targetFaces = o.tissueFaces;
+  {
+    auto timer = report.time("tissues");
+    for (meshing::LabelSurface& s : meshing::labelSurfaces(labels, {}, tissueSurface, &progress)) {
+      ReferenceTissue tissue{s.name, TissueKind::Organ, "", false, std::move(s.mesh)};
+      tissue.mesh.faceAttributes = {};
+      classify(tissue);
+      anatomy.tissues.push_back(std::move(tissue));
+    }
+  }
+  anatomy.skin.faceAttributes = {};
+  anatomy.sagittal = sagittalPlaneOfPairs(anatomy.tissues, o.labels);
+  io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
+  report.output("reference", o.out);
+  int bones = 0;
+  for (const ReferenceTissue& t : anatomy.tissues) bones += t.kind == TissueKind::Bone;
+  report.metric("tissues", anatomy.tissues.size());
+  report.metric("bones", bones);
+  report.metric("skin_vertices", anatomy.skin.V.rows());
+  report.metric("skin_cut_vertices", anatomy.skinCutVertices.size());
+  std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices (" << anatomy.skinCutVertices.size()
+            << " on the field of view's cut), " << anatomy.tissues.size()
+            << " tissues (" << bones << " bones), sagittal normal " << anatomy.sagittal.normal.transpose() << "\n";
+  o.common.finish(report);
+}
+
+// OpenSim bodies of the trunk (seed 000 §8: skull, spine, sternum, pelvis, rib cage move symmetrically).
+bool isTrunkBody(const std::string& body) { return body == "pelvis" || body == "torso"; }
+
+// The full-body reference (seed 000 §3): the MakeHuman skin with the OpenSim model's bones and muscle
+// path points placed inside it by seed 004's body frame and per-body similarity fits (skeleton_placement.h).
+// Each bone mesh is a tissue; the meshes of one OpenSim body form one bone group; path points are fixed to
+// their body's first mesh.
+void runFullBody(const FullBodyOptions& o) {
+  io::Report report("reference full-body");
+  report.input("skin", o.skin);
+  report.input("skeleton", o.skeleton);
+  report.input("model", o.model);
+  namespace fs = std::filesystem;
+  const std::string base = o.baseMesh.empty() ? (fs::path(o.skeleton).parent_path() / "base.obj").string() : o.baseMesh;
+  ReferenceAnatomy anatomy;
+  anatomy.name = "full body (" + fs::path(o.skin).filename().string() + ", " + fs::path(o.model).filename().string() + ")";
+  anatomy.skin = io::readTriMesh(o.skin);
+  anatomy.skin.V = io::transformPoints(anatomy.skin.V, io::yUpToLps(), 100.0);
+  const Skeleton rig = io::transformSkeleton(io::readMakeHumanSkeleton(o.skeleton, io::readTriMesh(base).V), io::yUpToLps(), 100.0);
+  std::map<std::string, Eigen::Vector3d> joints = transfer::jointPositions(rig);
+  for (const char* name : {"upperleg01.L", "foot.L", "upperleg01.R", "foot.R"})
+    if (!joints.count(name)) throw BadInput(o.skeleton, std::string("no joint '") + name + "' (a MakeHuman default rig is needed)");
+  const transfer::BodyFrame frame = transfer::computeBodyFrame(
+      anatomy.skin.V, anatomy.skin.F, {joints.at("upperleg01.L"), joints.at("foot.L"), joints.at("upperleg01.R"), joints.at("foot.R")});
+  joints["head-spine"] = frame.headSpineJoint;
+  anatomy.sagittal = {frame.sagittalPoint, frame.sagittalNormal};
+
+  MusculoskeletalModel model = io::readOpenSimModel(o.model);
+  model.bodies = io::transformSkeleton(model.bodies, io::openSimToLps(), 1000.0);
+  for (Muscle& m : model.muscles)
+    for (PathPoint& point : m.path) point.location = 1000.0 * io::openSimToLps() * point.location;
+  const transfer::SkeletonPlacement placement =
+      transfer::placeSkeleton(model.bodies, transfer::rajagopalToMakeHuman(), joints, frame.axes());
+  std::map<int, std::string> firstTissueOfBody;
+  const fs::path geometryDir = fs::path(o.model).parent_path() / "Geometry";
+  for (const AttachedGeometry& g : model.geometry) {
+    TriMesh mesh = io::readTriMesh((geometryDir / g.meshFile).string());
+    mesh.V = transfer::placeBodyPoints(model.bodies, placement, g.body,
+                                       io::transformPoints(mesh.V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0));
+    const std::string body = model.bodies.joints[g.body].name;
+    ReferenceTissue tissue{fs::path(g.meshFile).stem().string(), TissueKind::Bone, body, isTrunkBody(body), std::move(mesh)};
+    firstTissueOfBody.emplace(g.body, tissue.name);
+    anatomy.tissues.push_back(std::move(tissue));
+  }
+  const std::vector<MatrixX3d> paths = transfer::placeMusclePaths(model.bodies, placement, model.muscles);
+  for (std::size_t m = 0; m < model.muscles.size(); ++m)
+    for (std::size_t p = 0; p < model.muscles[m].path.size(); ++p) {
+      const auto tissue = firstTissueOfBody.find(model.muscles[m].path[p].body);
+      anatomy.points.push_back({model.muscles[m].name + "/" + model.muscles[m].path[p].name,
+                                tissue == firstTissueOfBody.end() ? "" : tissue->second,
+                                paths[m].row(Eigen::Index(p)).transpose()});
+    }
+  io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
+  report.output("reference", o.out);
+  report.metric("bones", anatomy.tissues.size());
+  report.metric("points", anatomy.points.size());
+  report.metric("head_slices", frame.headSlices);
+  std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices, " << anatomy.tissues.size() << " bone meshes, "
+            << anatomy.points.size() << " muscle path points\n";
+  o.common.finish(report);
+}
+
+}  // namespace
+
+void addReferenceCommand(CLI::App& app) {
+  auto o = std::make_shared<ReferenceOptions>();
+  CLI::App* cmd = app.add_subcommand("reference", "Build a reference anatomy for `vesalius transfer`");
+  cmd->require_subcommand(1);
+  CLI::App* torso = cmd->add_subcommand("torso", "Reference anatomy from a labelled CT: body surface as skin, every label as a tissue");
+  torso->add_option("--scan", o->scan, "The CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
+  torso->add_option("--labels", o->labels, "Its label map (TotalSegmentator names: bones, muscles, organs)")->required();
+  torso->add_option("--label-table", o->table, "Label table (TSV or Slicer .ctbl) naming the labels");
+  torso->add_option("--name", o->name, "Name stored in reference.json");
+  torso->add_option("--skin-faces", o->skinFaces, "Triangles of the skin surface")->capture_default_str();
+  torso->add_option("--tissue-faces", o->tissueFaces, "Triangles of each tissue surface")->capture_default_str();
+  torso->add_option("--out", o->out, "Reference folder to write (reference.json, skin.obj, tissues/)")->required();
+  addCommonOptions(*torso, o->common);
+  torso->footer(
+      "Example:\n  vesalius reference torso --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz \\\n"
+      "    --labels testdata/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz \\\n"
+      "    --label-table testdata/ct-abdomen-pelvis/labels_total_v1.tsv --out torso-reference\n"
+      "Trunk bones (vertebrae, pelvis, rib cage) are marked symmetric; see docs/methods/anatomy-transfer.md.");
+  torso->callback([o] { runReference(*o); });
+
+  auto f = std::make_shared<FullBodyOptions>();
+  CLI::App* full = cmd->add_subcommand("full-body", "Reference anatomy from a MakeHuman skin with an OpenSim skeleton placed inside it");
+  full->add_option("--skin", f->skin, "MakeHuman body (.obj, decimetres, +Y up)")->required();
+  full->add_option("--skeleton", f->skeleton, "MakeHuman default rig (.mhskel)")->required();
+  full->add_option("--base-mesh", f->baseMesh, "MakeHuman base.obj for the rig (default: beside it)");
+  full->add_option("--model", f->model, "OpenSim model (.osim) with its Geometry folder beside it")->required();
+  full->add_option("--out", f->out, "Reference folder to write")->required();
+  addCommonOptions(*full, f->common);
+  full->footer(
+      "Example:\n  vesalius reference full-body --skin testdata/body/shapes/mh_neutral_body.obj \\\n"
+      "    --skeleton testdata/body/default.mhskel --model testdata/skeleton-opensim/Rajagopal2016.osim --out body-reference\n"
+      "The skeleton is placed by seed 004's body frame and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
+  full->callback([f] { runFullBody(*f); });
+}
+
+}  // namespace vesalius::cli

@@ -1,0 +1,305 @@
+// vesalius transfer: a reference anatomy carried into a target body surface (seed 000): skin registration
+// (§4), erosion by the fat thickness (§5), Laplace interpolation (§7), bone registration (§8), final
+// interpolation; with the anatomical rules measured in the report.
+#include "common.h"
+#include "thickness_input.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/grid_sampling.h"
+#include "vesalius/fat/erode_skin.h"
+#include "vesalius/io/body_axes.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/transfer/anatomy_checks.h"
+#include "vesalius/transfer/anatomy_transfer.h"
+#include "vesalius/transfer/skin_registration.h"
+#include "vesalius/viz/surface_render.h"
+
+#include <tbb/parallel_for.h>
+
+#include <filesystem>
+#include <limits>
+#include <iomanip>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace vesalius::cli {
+
+namespace {
+
+struct TransferOptions {
+  std::string reference, targetSkin, out, space = "lps", png, fat = "0";
+  double voxelSize = 3;
+  int registrationIterations = transfer::SkinRegistrationOptions{}.iterations;
+  CommonOptions common;
+};
+
+TriMesh readTarget(const TransferOptions& o) {
+  TriMesh skin = io::readTriMesh(o.targetSkin);
+  if (o.space == "makehuman") skin.V = io::transformPoints(skin.V, io::yUpToLps(), 100.0);
+  else if (o.space != "lps") throw UsageError("transfer: --space must be lps or makehuman");
+  return skin;
+}
+
+// The thickness to erode each registered skin vertex by: the given one, except on the skin the scan's
+// field of view cut (no fat there), tapered linearly from the cut's rim over the thickness itself, so that
+// the eroded wall meets the cap without a step (a step folds the field where they meet).
+Eigen::VectorXd taperAtCut(const ReferenceAnatomy& reference, const MatrixX3d& skin, Eigen::VectorXd thickness) {
+  if (reference.skinCutVertices.empty()) return thickness;
+  tbb::parallel_for(Eigen::Index(0), skin.rows(), [&](Eigen::Index v) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const int c : reference.skinCutVertices) nearest = std::min(nearest, (skin.row(v) - skin.row(c)).squaredNorm());
+    if (thickness[v] > 0) thickness[v] *= std::min(1.0, std::sqrt(nearest) / thickness[v]);
+  });
+  return thickness;
+}
+
+// The grid of the displacement field: it covers the reference skin and every tissue.
+GridGeometry fieldGrid(const ReferenceAnatomy& reference, double voxelSize) {
+  std::vector<const TriMesh*> meshes{&reference.skin};
+  for (const ReferenceTissue& t : reference.tissues) meshes.push_back(&t.mesh);
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = voxelSize;
+  grid.marginMm = 3 * voxelSize;
+  grid.maxSize = Eigen::Vector3i(400, 400, 800);
+  return meshing::coveringGrid(meshes, grid);
+}
+
+// Rules R5, R6: the signed distance (mm, negative inside) of every tissue vertex to a closed body
+// surface, exact within 6 mm of it and clamped to ±6 mm beyond.
+std::vector<Eigen::VectorXd> signedDistances(const TriMesh& body, const std::vector<MatrixX3d>& tissues) {
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = 2.0;
+  grid.maxSize = Eigen::Vector3i(400, 400, 1000);
+  meshing::SignedDistanceOptions band;
+  band.bandMm = 6.0;
+  const Grid<float> distance = meshing::meshSignedDistance(body, meshing::coveringGrid({&body}, grid), band);
+  std::vector<Eigen::VectorXd> result;
+  for (const MatrixX3d& V : tissues) {
+    Eigen::VectorXd d(V.rows());
+    for (Eigen::Index r = 0; r < V.rows(); ++r) {
+      const Eigen::Vector3d index = distance.geometry.worldToIndex(V.row(r).transpose());
+      d[r] = insideVoxels(index, distance.geometry.size) ? sampleTrilinear(distance, index) : band.bandMm;
+    }
+    result.push_back(d);
+  }
+  return result;
+}
+
+// The vertices inside the reference skin that the transfer put outside the target's (R5, R6), beside
+// those outside in the reference already: a segmentation's labels may run a voxel past its body surface
+// where the field of view cuts both, and no transfer should be blamed for that. Vertices within a field
+// voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
+// field's first-order error at the skin; `deepMm` counts those deeper apart.
+void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result,
+                  double deepMm, io::Report& report) {
+  std::vector<MatrixX3d> rest;
+  for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
+  const std::vector<Eigen::VectorXd> before = signedDistances(reference.skin, rest),
+                                     after = signedDistances(body, result.tissues);
+  long total = 0, outsideBefore = 0, pushedOut = 0, deepPushedOut = 0;
+  double worstPushedOut = 0;
+  for (std::size_t t = 0; t < rest.size(); ++t) {
+    long tissuePushedOut = 0;
+    for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
+      ++total;
+      if (before[t][r] > 0) {
+        ++outsideBefore;
+      } else if (after[t][r] > 0) {
+        ++tissuePushedOut;
+        deepPushedOut += before[t][r] <= -deepMm;
+        worstPushedOut = std::max(worstPushedOut, after[t][r]);
+      }
+    }
+    pushedOut += tissuePushedOut;
+    if (tissuePushedOut) report.metric("pushed_out_vertices_" + reference.tissues[t].name, tissuePushedOut);
+  }
+  report.metric("tissue_vertices", total);
+  report.metric("reference_outside_vertices", outsideBefore);
+  report.metric("pushed_out_vertices", pushedOut);
+  report.metric("pushed_out_worst_mm", worstPushedOut);
+  report.metric("pushed_out_deep_vertices", deepPushedOut);
+  report.metric("deep_means_mm", deepMm);
+}
+
+// Rules R1, R2: long bones' centre lines, the trunk's mirror symmetry, before and after.
+void reportBones(const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result, io::Report& report) {
+  nlohmann::json bones = nlohmann::json::array();
+  for (const transfer::BoneGroupMap& group : result.boneGroups) {
+    nlohmann::json g{{"group", group.group}, {"symmetric", group.symmetric}, {"rms_to_attractor_mm", group.rmsToAttractorMm},
+                     {"determinant", group.map.A.determinant()}};
+    if (group.symmetric) {
+      // A pair (hips, ribs) is symmetric as a whole: the group's meshes are measured together.
+      TriMesh rest, interpolated, registered;
+      for (const int t : group.tissues) {
+        TriMesh part = reference.tissues[t].mesh;
+        rest = rest.V.rows() ? concatenate(rest, part) : part;
+        part.V = result.interpolated[t];
+        interpolated = interpolated.V.rows() ? concatenate(interpolated, part) : part;
+        part.V = result.tissues[t];
+        registered = registered.V.rows() ? concatenate(registered, part) : part;
+      }
+      g["mirror_asymmetry_mm"] = {{"reference", transfer::mirrorAsymmetry(rest.V, rest.F, reference.sagittal)},
+                                  {"interpolated", transfer::mirrorAsymmetry(interpolated.V, rest.F, result.sagittal)},
+                                  {"registered", transfer::mirrorAsymmetry(registered.V, rest.F, result.sagittal)}};
+    } else {
+      for (const int t : group.tissues) {
+        const MatrixX3d& rest = reference.tissues[t].mesh.V;
+        g["centre_line_deviation"][reference.tissues[t].name] = {
+            {"reference", transfer::centreLineDeviation(rest, rest)},
+            {"interpolated", transfer::centreLineDeviation(rest, result.interpolated[t])},
+            {"registered", transfer::centreLineDeviation(rest, result.tissues[t])}};
+      }
+    }
+    bones.push_back(g);
+  }
+  report.metric("bone_groups", bones);
+}
+
+void renderPng(const ReferenceAnatomy& anatomy, const std::vector<MatrixX3d>& tissueVertices, const TriMesh& skin,
+               const std::string& path, const WriteOptions& write) {
+  std::vector<TriMesh> meshes;
+  for (std::size_t t = 0; t < anatomy.tissues.size(); ++t) {
+    meshes.push_back(anatomy.tissues[t].mesh);
+    meshes.back().V = tissueVertices[t];
+  }
+  std::vector<viz::SurfaceLayer> layers;
+  for (std::size_t t = 0; t < meshes.size(); ++t) {
+    const TissueKind kind = anatomy.tissues[t].kind;
+    const viz::Rgb color = kind == TissueKind::Bone     ? viz::Rgb{235, 225, 200}
+                           : kind == TissueKind::Muscle ? viz::Rgb{190, 60, 55}
+                                                        : viz::Rgb{150, 100, 80};
+    layers.push_back({&meshes[t], color, 1.0});
+  }
+  layers.push_back({&skin, viz::Rgb{230, 190, 160}, 0.2});
+  viz::SurfaceRenderOptions options;
+  options.write = write;
+  viz::writeSurfacesPng(layers, path, options);
+}
+
+ReferenceAnatomy transferredAnatomy(const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result,
+                                    const MatrixX3d& targetSkin) {
+  ReferenceAnatomy out = reference;
+  out.name = "transferred from " + reference.name;
+  out.skin.V = targetSkin;
+  out.sagittal = result.sagittal;
+  for (std::size_t t = 0; t < out.tissues.size(); ++t) out.tissues[t].mesh.V = result.tissues[t];
+  for (std::size_t p = 0; p < out.points.size(); ++p) out.points[p].position = result.points.row(Eigen::Index(p)).transpose();
+  return out;
+}
+
+void runTransfer(const TransferOptions& o) {
+  if (fs::weakly_canonical(o.out) == fs::weakly_canonical(o.reference))
+    throw UsageError("transfer: --out must not be the reference folder (inputs are never overwritten)");
+  if (!o.png.empty() && !viz::canRenderSurfaces()) throw UsageError("transfer: --png needs a display (run under xvfb-run)");
+  io::Report report("transfer");
+  report.input("reference", o.reference);
+  report.input("target_skin", o.targetSkin);
+  report.parameter("fat", o.fat);
+  report.parameter("voxel_size_mm", o.voxelSize);
+  report.parameter("registration_iterations", o.registrationIterations);
+  Progress progress(o.common.progressStyle());
+  const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
+  const TriMesh target = readTarget(o);
+
+  transfer::SkinRegistrationOptions registrationOptions;
+  registrationOptions.iterations = o.registrationIterations;
+  progress.begin("register", "skin registration (ICP with shape matching)");
+  const auto startRegister = std::chrono::steady_clock::now();
+  const transfer::SkinRegistration registered =
+      transfer::registerSkin(reference.skin.V, reference.skin.F, target.V, target.F, registrationOptions);
+  report.stage("skin registration", std::chrono::duration<double>(std::chrono::steady_clock::now() - startRegister).count());
+  progress.end();
+  report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
+  report.metric("registration_max_distance_mm", registered.finalMaxDistance);
+
+  TriMesh eroded = reference.skin;
+  eroded.V = registered.V;
+  std::string fatKind;
+  const Eigen::VectorXd fat = readThickness(o.fat, reference.skin, o.reference + "/" + "skin.obj", fatKind);
+  report.parameter("fat_kind", fatKind);
+  if (fat.maxCoeff() > 0) {
+    auto timer = report.time("erosion");
+    const Eigen::VectorXd thickness = taperAtCut(reference, registered.V, fat);
+    const fat::ErodedSkin e = fat::erodeSkin(registered.V, reference.skin.F, thickness);
+    eroded.V = e.V;
+    report.metric("erosion_mean_mm", e.meanDisplacement);
+    report.metric("erosion_limited_vertices", e.limited);
+    report.metric("erosion_new_self_intersections", e.newSelfIntersections);
+  }
+
+  progress.begin("transfer", "interpolation, bone registration, final interpolation");
+  const GridGeometry grid = fieldGrid(reference, o.voxelSize);
+  const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, grid);
+  const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside);
+  progress.end();
+  report.stage("skin field", result.secondsSkinField);
+  report.stage("bone registration", result.secondsBones);
+  report.stage("final field", result.secondsFinalField);
+  report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
+  const transfer::JacobianSummary jacobian = transfer::jacobianDeterminant(result.finalField);
+  report.metric("jacobian_min", jacobian.minimum);
+  report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
+  report.metric("jacobian_min_at", {jacobian.whereMinimum.x(), jacobian.whereMinimum.y(), jacobian.whereMinimum.z()});
+  report.metric("jacobian_interior_min", jacobian.interiorMinimum);
+  report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
+  TriMesh body = reference.skin;
+  body.V = registered.V;
+  reportInside(body, reference, result, o.voxelSize, report);
+  reportBones(reference, result, report);
+
+  const ReferenceAnatomy out = transferredAnatomy(reference, result, registered.V);
+  // The sub-fat surface (the seed's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
+  io::writeReferenceAnatomy(o.out, out, o.common.writeOptions(), {{"eroded_skin.obj", eroded}});
+  report.output("anatomy", o.out);
+  report.output("eroded_skin", (fs::path(o.out) / "eroded_skin.obj").string());
+  if (!o.png.empty()) {
+    // The result, and the reference beside it under the same name with "_reference".
+    renderPng(out, result.tissues, out.skin, o.png, o.common.writeOptions());
+    std::vector<MatrixX3d> rest;
+    for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
+    const fs::path png(o.png);
+    const std::string referencePng = (png.parent_path() / (png.stem().string() + "_reference" + png.extension().string())).string();
+    renderPng(reference, rest, reference.skin, referencePng, o.common.writeOptions());
+    report.output("png", o.png);
+    report.output("png_reference", referencePng);
+  }
+  std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
+            << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
+            << result.boneGroups.size() << " bone groups, Jacobian min " << jacobian.minimum << ", "
+            << report.json()["metrics"]["pushed_out_vertices"].get<long>() << " tissue vertices pushed out of the skin\n";
+  o.common.finish(report);
+}
+
+}  // namespace
+
+void addTransferCommand(CLI::App& app) {
+  auto o = std::make_shared<TransferOptions>();
+  CLI::App* cmd = app.add_subcommand("transfer", "Carry a reference anatomy into a target body surface (seed 000)");
+  cmd->add_option("--reference", o->reference, "Reference anatomy folder (from `vesalius reference`)")->required();
+  cmd->add_option("--target-skin", o->targetSkin, "Closed body surface of the target (.obj .stl .vtp .ply .vtk)")->required();
+  cmd->add_option("--space", o->space, "Space of the target skin: lps (mm) or makehuman (decimetres, +Y up)")
+      ->capture_default_str();
+  cmd->add_option("--fat", o->fat,
+                  "Subcutaneous fat of the target, eroded from its skin: a thickness in mm, a texture on the "
+                  "reference skin's uv (from 'fat texture'), a mesh with fat_thickness or a text file per "
+                  "reference skin vertex")
+      ->capture_default_str();
+  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the displacement field's grid, mm")->capture_default_str();
+  cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
+      ->capture_default_str();
+  cmd->add_option("--png", o->png,
+                  "Render of the transferred anatomy inside the translucent skin, and of the reference beside it "
+                  "(NAME_reference.png); needs a display");
+  cmd->add_option("--out", o->out, "Folder to write the transferred anatomy to (same form as a reference)")->required();
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Example:\n  vesalius reference torso --scan ct.nii.gz --labels seg.nii.gz --label-table labels.tsv --out ref\n"
+      "  vesalius transfer --reference ref --target-skin body.obj --fat 5 --out target --report transfer.json\n"
+      "See docs/methods/anatomy-transfer.md for the steps and the checks in the report.");
+  cmd->callback([o] { runTransfer(*o); });
+}
+
+}  // namespace vesalius::cli

@@ -1,0 +1,33 @@
+// Reference anatomies on disk (core/anatomy.h): a folder holding reference.json and one OBJ per mesh.
+//
+//   {"format": "vesalius-reference-anatomy", "version": 1, "name": "torso (example_ct)",
+//    "coordinate_system": "LPS", "units": "mm",
+//    "skin": "skin.obj", "skin_cut_vertices": [12, 13, ...],
+//    "sagittal_plane": {"point": [x, y, z], "normal": [x, y, z]},
+//    "tissues": [{"name": "hip_left", "kind": "bone", "group": "pelvis", "symmetric": true,
+//                 "file": "tissues/hip_left.obj"}, ...],
+//    "points": [{"name": "...", "tissue": "femur_left", "position": [x, y, z]}, ...]}
+//
+// Mesh paths are relative to the folder. A transfer's output is written in the same form, so a
+// transferred anatomy can be a reference in turn (docs/formats.md).
+#pragma once
+
+#include "vesalius/core/anatomy.h"
+#include "vesalius/core/atomic_file.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vesalius::io {
+
+// Throws BadInput naming the file (reference.json or a mesh) for anything missing or malformed.
+ReferenceAnatomy readReferenceAnatomy(const std::string& folder);
+
+// Writes the folder whole or not at all: into a temporary sibling folder, renamed into place at the end.
+// `extras`: more meshes to put in the folder beside the anatomy (file name, mesh), not listed in
+// reference.json. Throws UsageError if `folder` exists and !options.force.
+void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& anatomy, const WriteOptions& options,
+                           const std::vector<std::pair<std::string, TriMesh>>& extras = {});
+
+}  // namespace vesalius::io

@@ -1,0 +1,158 @@
+// Reference anatomy folders (reference_anatomy_io.h).
+#include "vesalius/io/reference_anatomy_io.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/text_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace vesalius::io {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+constexpr const char* kFormat = "vesalius-reference-anatomy";
+
+Eigen::Vector3d vector3(const Json& value, const std::string& what, const std::string& source) {
+  if (!value.is_array() || value.size() != 3)
+    throw BadInput(source, what + " must be an array of 3 numbers");
+  Eigen::Vector3d v;
+  for (int a = 0; a < 3; ++a) {
+    if (!value[a].is_number()) throw BadInput(source, what + " must be an array of 3 numbers");
+    v[a] = value[a].get<double>();
+  }
+  return v;
+}
+
+const Json& member(const Json& object, const char* key, const std::string& source, const std::string& where) {
+  const auto it = object.is_object() ? object.find(key) : object.end();
+  if (it == object.end()) throw BadInput(source, where + " has no \"" + key + "\"");
+  return *it;
+}
+
+std::string text(const Json& object, const char* key, const std::string& source, const std::string& where) {
+  const Json& value = member(object, key, source, where);
+  if (!value.is_string()) throw BadInput(source, where + ": \"" + key + "\" must be a string");
+  return value.get<std::string>();
+}
+
+TriMesh readMesh(const fs::path& folder, const std::string& file) {
+  return readTriMesh((folder / file).string());
+}
+
+Json toJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+// A file name made of the tissue's name: letters, digits, '-' and '_' kept, anything else '_'.
+std::string fileNameOf(const std::string& name) {
+  std::string file;
+  for (const char c : name) file += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return file.empty() ? "tissue" : file;
+}
+
+}  // namespace
+
+ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
+  const fs::path root(folder);
+  const std::string source = (root / "reference.json").string();
+  Json doc;
+  try {
+    doc = Json::parse(readTextFile(source));
+  } catch (const Json::exception& e) {
+    throw BadInput(source, std::string("invalid JSON: ") + e.what());
+  }
+  if (!doc.is_object() || doc.value("format", "") != kFormat)
+    throw BadInput(source, std::string("not a reference anatomy (\"format\" is not \"") + kFormat + "\")");
+  if (doc.value("version", 0) != 1) throw BadInput(source, "unsupported reference anatomy version");
+  ReferenceAnatomy anatomy;
+  anatomy.name = doc.value("name", folder);
+  anatomy.skin = readMesh(root, text(doc, "skin", source, "the document"));
+  if (doc.contains("skin_cut_vertices")) {
+    if (!doc["skin_cut_vertices"].is_array()) throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
+    for (const Json& v : doc["skin_cut_vertices"]) {
+      if (!v.is_number_integer()) throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
+      anatomy.skinCutVertices.push_back(v.get<int>());
+    }
+  }
+  const Json& plane = member(doc, "sagittal_plane", source, "the document");
+  anatomy.sagittal.point = vector3(member(plane, "point", source, "sagittal_plane"), "sagittal_plane.point", source);
+  anatomy.sagittal.normal = vector3(member(plane, "normal", source, "sagittal_plane"), "sagittal_plane.normal", source);
+  for (const Json& t : member(doc, "tissues", source, "the document")) {
+    ReferenceTissue tissue;
+    tissue.name = text(t, "name", source, "a tissue");
+    const std::string where = "tissue '" + tissue.name + "'";
+    try {
+      tissue.kind = tissueKindFromName(text(t, "kind", source, where));
+    } catch (const UsageError& e) {
+      throw BadInput(source, where + ": " + e.what());
+    }
+    tissue.group = t.value("group", "");
+    tissue.symmetric = t.value("symmetric", false);
+    tissue.mesh = readMesh(root, text(t, "file", source, where));
+    anatomy.tissues.push_back(std::move(tissue));
+  }
+  if (doc.contains("points"))
+    for (const Json& p : doc["points"]) {
+      ReferencePoint point;
+      point.name = text(p, "name", source, "a point");
+      point.tissue = p.value("tissue", "");
+      point.position = vector3(member(p, "position", source, "point '" + point.name + "'"), "point '" + point.name + "'", source);
+      anatomy.points.push_back(std::move(point));
+    }
+  anatomy.sagittal.normal.normalize();
+  anatomy.validate(source);
+  return anatomy;
+}
+
+void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& anatomy, const WriteOptions& options,
+                           const std::vector<std::pair<std::string, TriMesh>>& extras) {
+  anatomy.validate(folder);
+  const fs::path target = fs::path(folder).lexically_normal();
+  if (fs::exists(target) && !options.force)
+    throw UsageError(folder + " exists; pass --force to replace it");
+  const fs::path temporary = target.string() + ".partial";
+  fs::remove_all(temporary);
+  try {
+    fs::create_directories(temporary / "tissues");
+    Json doc;
+    doc["format"] = kFormat;
+    doc["version"] = 1;
+    doc["name"] = anatomy.name;
+    doc["coordinate_system"] = "LPS";
+    doc["units"] = "mm";
+    doc["skin"] = "skin.obj";
+    writeTriMesh((temporary / "skin.obj").string(), anatomy.skin);
+    doc["skin_cut_vertices"] = anatomy.skinCutVertices;
+    doc["sagittal_plane"] = {{"point", toJson(anatomy.sagittal.point)}, {"normal", toJson(anatomy.sagittal.normal)}};
+    doc["tissues"] = Json::array();
+    for (const ReferenceTissue& tissue : anatomy.tissues) {
+      const std::string file = "tissues/" + fileNameOf(tissue.name) + ".obj";
+      if (fs::exists(temporary / file)) throw BadInput(folder, "two tissues share the file name " + file);
+      writeTriMesh((temporary / file).string(), tissue.mesh);
+      Json t = {{"name", tissue.name}, {"kind", tissueKindName(tissue.kind)}};
+      if (!tissue.group.empty()) t["group"] = tissue.group;
+      if (tissue.symmetric) t["symmetric"] = true;
+      t["file"] = file;
+      doc["tissues"].push_back(t);
+    }
+    doc["points"] = Json::array();
+    for (const ReferencePoint& point : anatomy.points)
+      doc["points"].push_back({{"name", point.name}, {"tissue", point.tissue}, {"position", toJson(point.position)}});
+    for (const auto& [file, mesh] : extras) writeTriMesh((temporary / file).string(), mesh);
+    std::ofstream out(temporary / "reference.json");
+    out << doc.dump(2) << '\n';
+    if (!out) throw BadInput(folder, "cannot write reference.json");
+  } catch (...) {
+    fs::remove_all(temporary);
+    throw;
+  }
+  fs::remove_all(target);
+  fs::rename(temporary, target);
+}
+
+}  // namespace vesalius::io

@@ -1,0 +1,23 @@
+// The anatomical rules of seed 000 (§3, R1–R7) as numbers, for the transfer report and its tests.
+#pragma once
+
+#include "vesalius/core/anatomy.h"
+#include "vesalius/core/mesh.h"
+
+#include <Eigen/Core>
+
+namespace vesalius::transfer {
+
+// R1, bones straight: the bone's reference vertices (#V by 3) are cut into `slices` slabs across their
+// principal axis (the outer 10 % of the length at either end are skipped, as the epiphyses bend the
+// centre line of any real bone); the centroids of the same vertices in `V` (the bone moved, same rows)
+// are fitted by a line, and the largest distance of a centroid from it is returned as a fraction of the
+// moved bone's length along that line. Slabs are chosen on the reference so that an affine map, which
+// maps centroids to centroids, changes the value only by the change of scale: a bent bone shows up.
+double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int slices = 20);
+
+// R2, trunk symmetric: the mean distance (mm) from the mesh's vertices mirrored in `plane` to the mesh.
+// 0 for a mesh that is its own mirror image.
+double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plane);
+
+}  // namespace vesalius::transfer

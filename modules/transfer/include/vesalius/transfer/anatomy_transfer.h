@@ -1,0 +1,60 @@
+// Anatomy transfer (seed 000 §7–8, Fig. 2.d–f): a reference anatomy carried into a target body, given
+// where every reference skin vertex lands in the target (skin registration §4, then erosion §5).
+//
+//   1. Interpolation (§7): the skin displacement, fixed on the skin, is extended harmonically into the
+//      reference body (displacement_field.h).
+//   2. Bone registration (§8): each bone group moves by the affine map that best fits its interpolated
+//      position (bone_registration.h), from its vertices at least a cell deep inside the reference skin
+//      (all of them if fewer than 4 are), as the field is extrapolated only a few cells beyond the skin;
+//      symmetric groups (the trunk) by maps symmetric about the sagittal
+//      plane, the target's plane being the image of the reference's under the trunk's joint affine fit.
+//   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
+//      every other tissue and every point not on a bone moves by it. Bone vertices less than a cell deep
+//      inside the reference skin do not fix the field: there the skin's value wins, as two fixed shells
+//      a cell apart with different values fold the field between them. Bones and the points fixed to them
+//      move by their affine maps exactly (rules R1, R7).
+// The grid is the caller's (it covers the reference skin and every tissue), with the reference body's
+// inside mask on it; the field runs in reference space, as the seed's.
+#pragma once
+
+#include "vesalius/core/anatomy.h"
+#include "vesalius/core/grid.h"
+#include "vesalius/transfer/bone_registration.h"
+#include "vesalius/transfer/displacement_field.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vesalius::transfer {
+
+struct AnatomyTransferOptions {
+  DisplacementFieldOptions field;
+};
+
+struct BoneGroupMap {
+  std::string group;          // the tissues' group, or the tissue's name for a bone of its own
+  std::vector<int> tissues;   // indices into ReferenceAnatomy::tissues
+  bool symmetric = false;
+  AffineMap map;
+  double rmsToAttractorMm = 0;  // RMS distance of the mapped bone to its interpolated position
+};
+
+struct TransferredAnatomy {
+  std::vector<MatrixX3d> tissues;      // per reference tissue: its vertices in the target (same rows)
+  std::vector<MatrixX3d> interpolated; // per tissue: after step 1 only (the seed's Fig. 4, left)
+  MatrixX3d points;                    // per reference point
+  std::vector<BoneGroupMap> boneGroups;
+  Plane sagittal;                      // the target's sagittal plane
+  DisplacementField skinField, finalField;
+  double secondsSkinField = 0, secondsBones = 0, secondsFinalField = 0;
+};
+
+// targetSkin: #skin V by 3, where each reference skin vertex lands. referenceInside: the reference skin's
+// inside mask on the field's grid. Throws BadInput if targetSkin's rows differ from the skin's, a mesh or
+// point lies off the grid, or a value is not finite.
+TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const MatrixX3d& targetSkin,
+                                   const Grid<std::uint8_t>& referenceInside,
+                                   const AnatomyTransferOptions& options = {});
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,87 @@
+// Placing a musculoskeletal model's bones inside a skin by one similarity transform per body (the
+// full-body reference anatomy of seed 000 §3: the skin with bones and muscle path points inside it). The
+// skin side comes from seed 004's skeleton alignment (body_frame.h: body frame and head-spine joint) and
+// the skin's rig (MakeHuman's joints); each body's joint centres are mapped onto the matching skin joints:
+//  - 3 or more point pairs: the least-squares similarity (Umeyama; fit/similarity_transform.h);
+//  - 2 pairs (a long bone: proximal and distal joint): scale = ratio of the joint distances; rotation =
+//    the parent body's (the skin frame's for a root) followed by the smallest rotation that turns the
+//    bone's axis onto the skin's; both joints then land exactly;
+//  - 1 pair (toes): the parent's scale and rotation, translated so the joint lands exactly;
+//  - no pair (patella: MakeHuman has no joint for it): the parent's transform.
+// Bodies with `scaleFrom` (BodyCorrespondence) are refitted in a second pass with the scales of the
+// first; their one- and no-pair children follow.
+// This is not seed 004's joint-by-joint refinement of a rig (its §3.2 onwards moves joints inside the
+// skin); here the skin's rig is taken as given and the model's bones follow it.
+//
+// Model points are joint centres in the model's default pose, in LPS mm: a body's origin is the centre
+// of the joint to its parent (true for Rajagopal 2016 but for the knee, whose tibia origin is 4 mm from the
+// femur-side joint frame), plus named landmarks fixed in a body.
+#pragma once
+
+#include "vesalius/core/mesh.h"
+#include "vesalius/core/skeleton.h"
+#include "vesalius/fit/similarity_transform.h"
+
+#include <Eigen/Core>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vesalius::transfer {
+
+// A named point fixed in a model body: `offset` in the body's frame (LPS mm, as io::transformSkeleton
+// leaves the frames).
+struct ModelLandmark {
+  std::string name;
+  std::string body;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+};
+
+// One body's point pairs: modelPoints[i] (a body name = its origin, or a landmark name) goes to
+// targetPoints[i] (a name in the target map). Both lists have the same length, 0 to many.
+// scaleFrom, if not empty, names bodies whose mean scale replaces the one the pairs give (for a body
+// whose target joints are not anatomically spaced, e.g. MakeHuman's hips, 221 mm apart against
+// Rajagopal's 155 mm); the pairs still give its rotation, and their centroids coincide.
+struct BodyCorrespondence {
+  std::string body;
+  std::vector<std::string> modelPoints;
+  std::vector<std::string> targetPoints;
+  std::vector<std::string> scaleFrom = {};
+};
+
+struct SkeletonCorrespondence {
+  std::vector<ModelLandmark> landmarks;
+  std::vector<BodyCorrespondence> bodies;  // bodies not listed move with their parent
+};
+
+// Rajagopal 2016 (testdata/skeleton-opensim) onto MakeHuman's default.mhskel: targets are MakeHuman bone
+// names (the bone's head joint) and "head-spine" (body_frame.h). The table itself is in
+// docs/methods/skeleton-alignment.md with the reasons for each pair.
+SkeletonCorrespondence rajagopalToMakeHuman();
+
+// Each joint's rest position (world translation) by joint name: the target map of a rig. #joints entries.
+std::map<std::string, Eigen::Vector3d> jointPositions(const Skeleton& skeleton);
+
+struct SkeletonPlacement {
+  std::vector<fit::SimilarityTransform> bodies;  // one per model body, model order
+  std::vector<double> rmsResidual;               // mm, of each body's point pairs after the fit (0 if < 2)
+};
+
+// model: the model's bodies in LPS mm (io::transformSkeleton of an OpenSim model). skinAxes: the skin's
+// body frame (BodyFrame::axes()), the rotation taken for a root with fewer than 3 pairs. Throws BadInput
+// naming a body, point or target that does not exist, or a body whose pairs are degenerate.
+SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorrespondence& correspondence,
+                                const std::map<std::string, Eigen::Vector3d>& targets, const Eigen::Matrix3d& skinAxes);
+
+// Points fixed in `body` (#P by 3, in the body's frame, LPS mm: mesh vertices, path point locations) to
+// their placed world positions: the model's rest pose, then the body's similarity. Throws UsageError for a
+// body index out of range.
+MatrixX3d placeBodyPoints(const Skeleton& model, const SkeletonPlacement& placement, int body, const MatrixX3d& local);
+
+// Every muscle's path (#points by 3, world LPS mm) with each point placed with its body. Locations must
+// be in LPS mm (converted like the model). Throws UsageError for a point fixed to ground.
+std::vector<MatrixX3d> placeMusclePaths(const Skeleton& model, const SkeletonPlacement& placement,
+                                        const std::vector<Muscle>& muscles);
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,67 @@
+// Anatomical rules as numbers (anatomy_checks.h).
+#include "vesalius/transfer/anatomy_checks.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/triangle_tree.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <vector>
+
+namespace vesalius::transfer {
+
+namespace {
+
+// Principal axis (unit) and centroid of the rows of P.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> principalAxis(const Eigen::MatrixX3d& P) {
+  const Eigen::RowVector3d centroid = P.colwise().mean();
+  const Eigen::MatrixX3d centred = P.rowwise() - centroid;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  return {eigen.eigenvectors().col(2), centroid.transpose()};
+}
+
+}  // namespace
+
+double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int slices) {
+  if (reference.rows() < 8 || slices < 5) throw UsageError("centre-line deviation needs 8 vertices and 5 slices");
+  if (V.rows() != reference.rows()) throw UsageError("centre-line deviation: the moved bone has other vertices");
+  const auto [axis, centroid] = principalAxis(reference);
+  const Eigen::VectorXd along = (reference.rowwise() - centroid.transpose()) * axis;
+  const double low = along.minCoeff(), length = along.maxCoeff() - low;
+  if (!(length > 0)) return 0;
+  std::vector<Eigen::Vector3d> sums(slices, Eigen::Vector3d::Zero());
+  std::vector<int> counts(slices, 0);
+  for (Eigen::Index r = 0; r < V.rows(); ++r) {
+    const double s = (along[r] - low) / length;
+    if (s < 0.1 || s > 0.9) continue;
+    const int slab = std::min(slices - 1, int(s * slices));
+    sums[slab] += V.row(r).transpose(), ++counts[slab];
+  }
+  std::vector<Eigen::Vector3d> centres;
+  for (int s = 0; s < slices; ++s)
+    if (counts[s] > 0) centres.push_back(sums[s] / counts[s]);
+  if (centres.size() < 3) return 0;
+  Eigen::MatrixX3d C(Eigen::Index(centres.size()), 3);
+  for (std::size_t s = 0; s < centres.size(); ++s) C.row(Eigen::Index(s)) = centres[s].transpose();
+  const auto [lineAxis, linePoint] = principalAxis(C);
+  const Eigen::VectorXd movedAlong = (V.rowwise() - linePoint.transpose()) * lineAxis;
+  double worst = 0;
+  for (Eigen::Index r = 0; r < C.rows(); ++r) {
+    const Eigen::Vector3d d = C.row(r).transpose() - linePoint;
+    worst = std::max(worst, (d - d.dot(lineAxis) * lineAxis).norm());
+  }
+  return worst / (movedAlong.maxCoeff() - movedAlong.minCoeff());
+}
+
+double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plane) {
+  const Eigen::Vector3d n = plane.normal.normalized();
+  const Eigen::VectorXd side = (V.rowwise() - plane.point.transpose()) * n;
+  const MatrixX3d mirrored = V - 2.0 * side * n.transpose();
+  const TriangleTree tree(V, F);
+  double sum = 0;
+  for (const ClosestPoint& c : tree.closest(mirrored)) sum += std::sqrt(c.squaredDistance);
+  return sum / double(V.rows());
+}
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,158 @@
+// Anatomy transfer (anatomy_transfer.h).
+#include "vesalius/transfer/anatomy_transfer.h"
+
+#include "vesalius/core/error.h"
+
+#include <chrono>
+#include <map>
+
+namespace vesalius::transfer {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+MatrixX3d stackRows(const std::vector<const MatrixX3d*>& parts) {
+  Eigen::Index rows = 0;
+  for (const MatrixX3d* part : parts) rows += part->rows();
+  MatrixX3d stacked(rows, 3);
+  rows = 0;
+  for (const MatrixX3d* part : parts) stacked.middleRows(rows, part->rows()) = *part, rows += part->rows();
+  return stacked;
+}
+
+// Bone tissues gathered into their groups, in the order the groups first appear.
+std::vector<BoneGroupMap> boneGroups(const ReferenceAnatomy& reference) {
+  std::vector<BoneGroupMap> groups;
+  std::map<std::string, int> index;
+  for (int t = 0; t < int(reference.tissues.size()); ++t) {
+    const ReferenceTissue& tissue = reference.tissues[t];
+    if (tissue.kind != TissueKind::Bone) continue;
+    const std::string name = tissue.group.empty() ? tissue.name : tissue.group;
+    const auto [it, inserted] = index.emplace(name, int(groups.size()));
+    if (inserted) groups.push_back({name, {}, tissue.symmetric, {}, 0});
+    groups[it->second].tissues.push_back(t);
+  }
+  return groups;
+}
+
+MatrixX3d groupVertices(const BoneGroupMap& group, const std::vector<MatrixX3d>& perTissue) {
+  std::vector<const MatrixX3d*> parts;
+  for (const int t : group.tissues) parts.push_back(&perTissue[t]);
+  return stackRows(parts);
+}
+
+// Whether the cell nearest p and its six neighbours are all inside the body: bone vertices that are not
+// (a bone that touches or pokes through the skin, as a segmentation's labels can where the field of view
+// cuts both) would fix cells beside the skin's own and fold the field between the two.
+bool deepInside(const Grid<std::uint8_t>& inside, const Eigen::Vector3d& p) {
+  const GridGeometry& g = inside.geometry;
+  const Eigen::Vector3d index = g.worldToIndex(p).array().round();
+  const int i = int(index.x()), j = int(index.y()), k = int(index.z());
+  for (const auto& d : {Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
+                        Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)})
+    if (!g.contains(i + d.x(), j + d.y(), k + d.z()) || !inside.at(i + d.x(), j + d.y(), k + d.z())) return false;
+  return true;
+}
+
+// The rows of `rest` (and the same rows of `displacement`) that lie deep inside the body.
+void appendDeepRows(const Grid<std::uint8_t>& inside, const MatrixX3d& rest, const MatrixX3d& displacement,
+                    std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector3d>& values) {
+  for (Eigen::Index r = 0; r < rest.rows(); ++r)
+    if (deepInside(inside, rest.row(r).transpose()))
+      points.push_back(rest.row(r).transpose()), values.push_back(displacement.row(r).transpose());
+}
+
+MatrixX3d toMatrix(const std::vector<Eigen::Vector3d>& rows) {
+  MatrixX3d M(Eigen::Index(rows.size()), 3);
+  for (std::size_t r = 0; r < rows.size(); ++r) M.row(Eigen::Index(r)) = rows[r].transpose();
+  return M;
+}
+
+// Step 2: the affine maps of the bone groups, attracted to their interpolated positions.
+// Each bone is attracted by its vertices deep inside the body, where the interpolated field is defined;
+// a bone with fewer than 4 of them (one outside the skin) by all of its vertices.
+void registerBones(const ReferenceAnatomy& reference, const Grid<std::uint8_t>& inside,
+                   const std::vector<MatrixX3d>& restBones, const std::vector<MatrixX3d>& interpolated,
+                   std::vector<BoneGroupMap>& groups, Plane& targetPlane) {
+  std::vector<MatrixX3d> attractedRest(restBones.size()), attractors(restBones.size());
+  for (std::size_t t = 0; t < restBones.size(); ++t) {
+    std::vector<Eigen::Vector3d> points, values;
+    appendDeepRows(inside, restBones[t], interpolated[t], points, values);
+    attractedRest[t] = points.size() >= 4 ? toMatrix(points) : restBones[t];
+    attractors[t] = points.size() >= 4 ? toMatrix(values) : interpolated[t];
+  }
+  std::vector<const MatrixX3d*> symmetricRest, symmetricMoved;
+  for (const BoneGroupMap& group : groups)
+    if (group.symmetric)
+      for (const int t : group.tissues) symmetricRest.push_back(&attractedRest[t]), symmetricMoved.push_back(&attractors[t]);
+  targetPlane = symmetricRest.empty()
+                    ? reference.sagittal
+                    : mapPlane(fitAffineMap(stackRows(symmetricRest), stackRows(symmetricMoved)), reference.sagittal);
+  for (BoneGroupMap& group : groups) {
+    const MatrixX3d P = groupVertices(group, attractedRest), Q = groupVertices(group, attractors);
+    group.map = group.symmetric ? fitSymmetricAffineMap(P, Q, reference.sagittal, targetPlane) : fitAffineMap(P, Q);
+    group.rmsToAttractorMm = std::sqrt((group.map.apply(P) - Q).rowwise().squaredNorm().mean());
+  }
+}
+
+}  // namespace
+
+TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const MatrixX3d& targetSkin,
+                                   const Grid<std::uint8_t>& referenceInside,
+                                   const AnatomyTransferOptions& options) {
+  reference.validate(reference.name);
+  if (targetSkin.rows() != reference.skin.V.rows())
+    throw BadInput("", "anatomy transfer: the target skin has " + std::to_string(targetSkin.rows()) +
+                           " vertices, the reference skin " + std::to_string(reference.skin.V.rows()));
+  if (!targetSkin.allFinite()) throw BadInput("", "anatomy transfer: a target skin vertex is not finite");
+  TransferredAnatomy result;
+
+  auto start = std::chrono::steady_clock::now();
+  const MatrixX3d skinDisplacement = targetSkin - reference.skin.V;
+  result.skinField = interpolateDisplacements(referenceInside, reference.skin.V, skinDisplacement, options.field);
+  std::vector<MatrixX3d> rest;
+  for (const ReferenceTissue& tissue : reference.tissues) {
+    rest.push_back(tissue.mesh.V);
+    result.interpolated.push_back(result.skinField.displace(tissue.mesh.V));
+  }
+  result.secondsSkinField = secondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  result.boneGroups = boneGroups(reference);
+  registerBones(reference, referenceInside, rest, result.interpolated, result.boneGroups, result.sagittal);
+  std::vector<int> mapOfTissue(reference.tissues.size(), -1);
+  for (int g = 0; g < int(result.boneGroups.size()); ++g)
+    for (const int t : result.boneGroups[g].tissues) mapOfTissue[t] = g;
+  result.secondsBones = secondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  std::vector<Eigen::Vector3d> fixedPoints, fixedValues;
+  for (Eigen::Index r = 0; r < skinDisplacement.rows(); ++r)
+    fixedPoints.push_back(reference.skin.V.row(r).transpose()), fixedValues.push_back(skinDisplacement.row(r).transpose());
+  for (const BoneGroupMap& group : result.boneGroups)
+    for (const int t : group.tissues)
+      appendDeepRows(referenceInside, rest[t], group.map.apply(rest[t]) - rest[t], fixedPoints, fixedValues);
+  result.finalField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues),
+                                               options.field, &result.skinField);
+  for (int t = 0; t < int(reference.tissues.size()); ++t)
+    result.tissues.push_back(mapOfTissue[t] >= 0 ? result.boneGroups[mapOfTissue[t]].map.apply(rest[t])
+                                                 : result.finalField.displace(rest[t]));
+  std::map<std::string, int> tissueIndex;
+  for (int t = 0; t < int(reference.tissues.size()); ++t) tissueIndex[reference.tissues[t].name] = t;
+  result.points.resize(Eigen::Index(reference.points.size()), 3);
+  for (std::size_t p = 0; p < reference.points.size(); ++p) {
+    const ReferencePoint& point = reference.points[p];
+    const auto it = tissueIndex.find(point.tissue);
+    const int group = it == tissueIndex.end() ? -1 : mapOfTissue[it->second];
+    result.points.row(Eigen::Index(p)) = (group >= 0 ? result.boneGroups[group].map.apply(point.position)
+                                                     : point.position + result.finalField.displacementAt(point.position))
+                                             .transpose();
+  }
+  result.secondsFinalField = secondsSince(start);
+  return result;
+}
+
+}  // namespace vesalius::transfer

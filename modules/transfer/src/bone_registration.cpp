@@ -1,0 +1,95 @@
+// Bone registration (bone_registration.h).
+#include "vesalius/transfer/bone_registration.h"
+
+#include "vesalius/core/error.h"
+
+#include <Eigen/Dense>
+
+#include <string>
+
+namespace vesalius::transfer {
+
+namespace {
+
+void checkPairs(const MatrixX3d& P, const MatrixX3d& Q) {
+  if (P.rows() != Q.rows())
+    throw BadInput("", "bone registration: " + std::to_string(P.rows()) + " bone points but " +
+                           std::to_string(Q.rows()) + " attractors");
+  if (P.rows() < 4) throw BadInput("", "bone registration needs at least 4 points on a bone");
+  if (!P.allFinite() || !Q.allFinite()) throw BadInput("", "bone registration: a point is not finite");
+}
+
+// The ridge-regularized least-squares linear map X ↦ Y of centred point sets (rows), see the header:
+// M = (Yᵀ X + λ s I)(Xᵀ X + λ I)⁻¹, for any dimension.
+Eigen::MatrixXd ridgeLinearFit(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  const Eigen::MatrixXd XX = X.transpose() * X;
+  const double trace = XX.trace();
+  if (!(trace > 0)) throw BadInput("", "bone registration: all points of a bone coincide");
+  const double lambda = 1e-6 * trace;
+  const double scale = std::sqrt(Y.squaredNorm() / X.squaredNorm());
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(X.cols(), X.cols());
+  const Eigen::MatrixXd lhs = XX + lambda * I;
+  const Eigen::MatrixXd rhs = Y.transpose() * X + lambda * scale * I;
+  return lhs.ldlt().solve(rhs.transpose()).transpose();  // lhs is symmetric
+}
+
+// Orthonormal frame with the plane's normal as first column.
+Eigen::Matrix3d planeFrame(const Plane& plane) {
+  const Eigen::Vector3d n = plane.normal.normalized();
+  const Eigen::Vector3d helper = std::abs(n.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d u = helper.cross(n).normalized();
+  Eigen::Matrix3d R;
+  R << n, u, n.cross(u);
+  return R;
+}
+
+}  // namespace
+
+MatrixX3d AffineMap::apply(const MatrixX3d& P) const {
+  return (P * A.transpose()).rowwise() + t.transpose();
+}
+
+AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q) {
+  checkPairs(P, Q);
+  const Eigen::RowVector3d cp = P.colwise().mean(), cq = Q.colwise().mean();
+  AffineMap map;
+  map.A = ridgeLinearFit(P.rowwise() - cp, Q.rowwise() - cq);
+  map.t = cq.transpose() - map.A * cp.transpose();
+  return map;
+}
+
+AffineMap fitSymmetricAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Plane& reference,
+                                const Plane& target) {
+  checkPairs(P, Q);
+  const Eigen::Matrix3d Rr = planeFrame(reference), Rt = planeFrame(target);
+  // Local coordinates: first axis the normal, origin on the plane.
+  const Eigen::MatrixXd p = (P.rowwise() - reference.point.transpose()) * Rr;
+  const Eigen::MatrixXd q = (Q.rowwise() - target.point.transpose()) * Rt;
+  // Normal axis: x' = a x (no offset, or the plane would move).
+  const Eigen::MatrixXd a = ridgeLinearFit(p.col(0), q.col(0));
+  // In-plane axes: a 2-D affine map.
+  const Eigen::RowVector2d cp = p.rightCols<2>().colwise().mean(), cq = q.rightCols<2>().colwise().mean();
+  const Eigen::MatrixXd B =
+      ridgeLinearFit(p.rightCols<2>().rowwise() - cp, q.rightCols<2>().rowwise() - cq);
+  const Eigen::Vector2d b = cq.transpose() - B * cp.transpose();
+  Eigen::Matrix3d local = Eigen::Matrix3d::Zero();
+  local(0, 0) = a(0, 0);
+  local.bottomRightCorner<2, 2>() = B;
+  AffineMap map;
+  map.A = Rt * local * Rr.transpose();
+  map.t = target.point + Rt * Eigen::Vector3d(0, b.x(), b.y()) - map.A * reference.point;
+  return map;
+}
+
+Plane mapPlane(const AffineMap& map, const Plane& reference) {
+  Plane plane;
+  plane.point = map.apply(reference.point);
+  plane.normal = map.A.inverse().transpose() * reference.normal;
+  const double length = plane.normal.norm();
+  if (!(length > 0) || !plane.normal.allFinite())
+    throw NumericalFailure("bone registration: the trunk's affine map is singular");
+  plane.normal /= length;
+  return plane;
+}
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,164 @@
+// Displacement fields by Laplace interpolation (displacement_field.h).
+#include "vesalius/transfer/displacement_field.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/grid_sampling.h"
+
+#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
+#include <limits>
+#include <string>
+
+namespace vesalius::transfer {
+
+namespace {
+
+constexpr int kNeighbours[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+
+template <class Visit>
+void forEachNeighbour(const GridGeometry& g, std::int64_t cell, Visit visit) {
+  const int i = int(cell % g.size.x()), j = int(cell / g.size.x() % g.size.y()),
+            k = int(cell / (std::int64_t(g.size.x()) * g.size.y()));
+  for (const auto& d : kNeighbours)
+    if (g.contains(i + d[0], j + d[1], k + d[2])) visit(g.linearIndex(i + d[0], j + d[1], k + d[2]));
+}
+
+// Free cells that no path of free cells joins to a fixed cell become Excluded.
+void excludeUnreachedCells(const GridGeometry& g, std::vector<CellRole>& roles) {
+  std::vector<std::uint8_t> reached(roles.size(), 0);
+  std::vector<std::int64_t> stack;
+  for (std::int64_t c = 0; c < std::int64_t(roles.size()); ++c)
+    if (roles[c] == CellRole::Fixed) stack.push_back(c), reached[c] = 1;
+  while (!stack.empty()) {
+    const std::int64_t c = stack.back();
+    stack.pop_back();
+    forEachNeighbour(g, c, [&](std::int64_t n) {
+      if (!reached[n] && roles[n] == CellRole::Free) reached[n] = 1, stack.push_back(n);
+    });
+  }
+  for (std::int64_t c = 0; c < std::int64_t(roles.size()); ++c)
+    if (roles[c] == CellRole::Free && !reached[c]) roles[c] = CellRole::Excluded;
+}
+
+// Rings of neighbour averages into the Excluded cells next to solved ones (see the header).
+void extrapolate(const std::vector<CellRole>& roles, int layers, std::array<Grid<double>, 3>& u) {
+  const GridGeometry& g = u[0].geometry;
+  std::vector<std::uint8_t> known(roles.size());
+  for (std::size_t c = 0; c < roles.size(); ++c) known[c] = roles[c] != CellRole::Excluded;
+  for (int layer = 0; layer < layers; ++layer) {
+    std::vector<std::int64_t> ring;
+    for (std::int64_t c = 0; c < std::int64_t(roles.size()); ++c) {
+      if (known[c]) continue;
+      bool touches = false;
+      forEachNeighbour(g, c, [&](std::int64_t n) { touches = touches || known[n]; });
+      if (touches) ring.push_back(c);
+    }
+    for (const std::int64_t c : ring) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int count = 0;
+      forEachNeighbour(g, c, [&](std::int64_t n) {
+        if (!known[n]) return;
+        for (int a = 0; a < 3; ++a) sum[a] += u[a].values[n];
+        ++count;
+      });
+      for (int a = 0; a < 3; ++a) u[a].values[c] = sum[a] / count;
+    }
+    for (const std::int64_t c : ring) known[c] = 1;
+  }
+}
+
+}  // namespace
+
+Eigen::Vector3d DisplacementField::displacementAt(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d index = geometry().worldToIndex(p);
+  return {sampleTrilinear(components[0], index), sampleTrilinear(components[1], index),
+          sampleTrilinear(components[2], index)};
+}
+
+MatrixX3d DisplacementField::displace(const MatrixX3d& P) const {
+  MatrixX3d moved(P.rows(), 3);
+  tbb::parallel_for(Eigen::Index(0), P.rows(), [&](Eigen::Index r) {
+    const Eigen::Vector3d p = P.row(r).transpose();
+    moved.row(r) = (p + displacementAt(p)).transpose();
+  });
+  return moved;
+}
+
+DisplacementField interpolateDisplacements(const Grid<std::uint8_t>& domain, const MatrixX3d& points,
+                                           const MatrixX3d& displacements,
+                                           const DisplacementFieldOptions& options,
+                                           const DisplacementField* initialGuess) {
+  const GridGeometry& g = domain.geometry;
+  if (std::int64_t(domain.values.size()) != g.voxelCount())
+    throw BadInput("", "displacement field: the domain mask does not match its grid");
+  if (initialGuess && initialGuess->geometry().size != g.size)
+    throw BadInput("", "displacement field: the initial guess lies on another grid");
+  const VoxelConstraints constraints = splatPointValues(g, points, displacements, options.splat);
+
+  DisplacementField field;
+  field.roles.assign(g.voxelCount(), CellRole::Excluded);
+  for (std::int64_t c = 0; c < g.voxelCount(); ++c)
+    if (domain.values[c]) field.roles[c] = CellRole::Free;
+  fixConstrainedVoxels(constraints, field.roles);
+  excludeUnreachedCells(g, field.roles);
+
+  LaplaceInterpolator laplace(g, field.roles, options.laplace);
+  field.levels = laplace.levelCount();
+  for (int a = 0; a < 3; ++a) {
+    field.components[a] = initialGuess ? initialGuess->components[a] : Grid<double>(g, 0.0);
+    for (std::int64_t c = 0; c < g.voxelCount(); ++c)
+      if (field.roles[c] != CellRole::Free) field.components[a].values[c] = 0.0;
+    writeConstraintValues(constraints, a, field.components[a]);
+    field.solves[a] = laplace.solve(field.components[a]);
+  }
+  extrapolate(field.roles, options.extrapolationLayers, field.components);
+  return field;
+}
+
+JacobianSummary jacobianDeterminant(const DisplacementField& field) {
+  const GridGeometry& g = field.geometry();
+  // d(index)/d(world): the inverse of direction · diag(spacing).
+  const Eigen::Matrix3d indexPerWorld = (g.direction * g.spacing.asDiagonal()).inverse();
+  JacobianSummary summary;
+  summary.minimum = summary.interiorMinimum = std::numeric_limits<double>::infinity();
+  std::int64_t minimumCell = -1;
+  for (int k = 1; k + 1 < g.size.z(); ++k)
+    for (int j = 1; j + 1 < g.size.y(); ++j)
+      for (int i = 1; i + 1 < g.size.x(); ++i) {
+        const std::int64_t c = g.linearIndex(i, j, k);
+        if (field.roles[c] == CellRole::Excluded) continue;
+        bool inside = true, interior = field.roles[c] == CellRole::Free;
+        forEachNeighbour(g, c, [&](std::int64_t n) {
+          inside = inside && field.roles[n] != CellRole::Excluded;
+          interior = interior && field.roles[n] == CellRole::Free;
+        });
+        if (!inside) continue;
+        Eigen::Matrix3d gradient;  // ∂u_a / ∂index_b
+        for (int a = 0; a < 3; ++a) {
+          const Grid<double>& u = field.components[a];
+          gradient(a, 0) = 0.5 * (u.at(i + 1, j, k) - u.at(i - 1, j, k));
+          gradient(a, 1) = 0.5 * (u.at(i, j + 1, k) - u.at(i, j - 1, k));
+          gradient(a, 2) = 0.5 * (u.at(i, j, k + 1) - u.at(i, j, k - 1));
+        }
+        const double det = (Eigen::Matrix3d::Identity() + gradient * indexPerWorld).determinant();
+        ++summary.measuredCells;
+        if (det <= 0) ++summary.nonPositiveCells;
+        if (det < summary.minimum) summary.minimum = det, minimumCell = c;
+        if (!interior) continue;
+        ++summary.interiorCells;
+        if (det <= 0) ++summary.interiorNonPositiveCells;
+        summary.interiorMinimum = std::min(summary.interiorMinimum, det);
+      }
+  if (minimumCell >= 0) {
+    const int i = int(minimumCell % g.size.x()), j = int(minimumCell / g.size.x() % g.size.y()),
+              k = int(minimumCell / (std::int64_t(g.size.x()) * g.size.y()));
+    summary.whereMinimum = g.indexToWorld(Eigen::Vector3d(i, j, k));
+  } else {
+    summary.minimum = 0;
+  }
+  if (summary.interiorCells == 0) summary.interiorMinimum = 0;
+  return summary;
+}
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,202 @@
+// Per-body similarity placement of a musculoskeletal model inside a skin (skeleton_placement.h).
+#include "vesalius/transfer/skeleton_placement.h"
+
+#include "vesalius/core/error.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace vesalius::transfer {
+
+namespace {
+
+BodyCorrespondence pairs(std::string body, std::vector<std::string> model, std::vector<std::string> skin) {
+  return {std::move(body), std::move(model), std::move(skin)};
+}
+
+void addSide(SkeletonCorrespondence& c, const std::string& s, const std::string& S) {
+  c.bodies.push_back(pairs("femur_" + s, {"femur_" + s, "tibia_" + s}, {"upperleg01." + S, "lowerleg01." + S}));
+  c.bodies.push_back(pairs("tibia_" + s, {"tibia_" + s, "talus_" + s}, {"lowerleg01." + S, "foot." + S}));
+  c.bodies.push_back(pairs("patella_" + s, {}, {}));
+  for (const char* foot : {"talus_", "calcn_"})
+    c.bodies.push_back(pairs(foot + s, {"talus_" + s, "toes_" + s}, {"foot." + S, "toe3-1." + S}));
+  c.bodies.push_back(pairs("toes_" + s, {"toes_" + s}, {"toe3-1." + S}));
+  c.bodies.push_back(pairs("humerus_" + s, {"humerus_" + s, "ulna_" + s}, {"upperarm01." + S, "lowerarm01." + S}));
+  for (const char* forearm : {"ulna_", "radius_"})
+    c.bodies.push_back(pairs(forearm + s, {"ulna_" + s, "hand_" + s}, {"lowerarm01." + S, "wrist." + S}));
+  c.bodies.push_back(
+      pairs("hand_" + s, {"hand_" + s, "mcp2_" + s, "mcp5_" + s}, {"wrist." + S, "finger2-1." + S, "finger5-1." + S}));
+}
+
+struct PointLookup {
+  const Skeleton& model;
+  const std::vector<Eigen::Isometry3d>& world;
+  const SkeletonCorrespondence& correspondence;
+  const std::map<std::string, Eigen::Vector3d>& targets;
+
+  Eigen::Vector3d modelPoint(const std::string& name) const {
+    const int b = model.find(name);
+    if (b >= 0) return world[std::size_t(b)].translation();
+    for (const ModelLandmark& l : correspondence.landmarks) {
+      if (l.name != name) continue;
+      const int body = model.find(l.body);
+      if (body < 0)
+        throw BadInput("", "skeleton placement: landmark '" + name + "' is on unknown body '" + l.body + "'");
+      return world[std::size_t(body)] * l.offset;
+    }
+    throw BadInput("", "skeleton placement: no body or landmark '" + name + "' in the model");
+  }
+  Eigen::Vector3d target(const std::string& name) const {
+    auto it = targets.find(name);
+    if (it == targets.end()) throw BadInput("", "skeleton placement: no target point '" + name + "'");
+    return it->second;
+  }
+};
+
+// Two pairs: the bone's axis a→b turned onto A→B from the reference rotation, scaled to length.
+fit::SimilarityTransform twoPointFit(const MatrixX3d& from, const MatrixX3d& to, const Eigen::Matrix3d& reference,
+                                     const std::string& body) {
+  const Eigen::Vector3d a = from.row(1) - from.row(0), b = to.row(1) - to.row(0);
+  if (!(a.norm() > 1e-9 && b.norm() > 1e-9))
+    throw BadInput("", "skeleton placement: the two joints of body '" + body + "' coincide");
+  fit::SimilarityTransform t;
+  t.scale = b.norm() / a.norm();
+  t.rotation = Eigen::Quaterniond::FromTwoVectors(reference * a, b).toRotationMatrix() * reference;
+  t.translation = 0.5 * (to.row(0) + to.row(1)).transpose() -
+                  t.scale * t.rotation * (0.5 * (from.row(0) + from.row(1)).transpose());
+  return t;
+}
+
+fit::SimilarityTransform fitPairs(const MatrixX3d& from, const MatrixX3d& to, const fit::SimilarityTransform* parent,
+                                  const Eigen::Matrix3d& skinAxes, const std::string& body) {
+  fit::SimilarityTransform reference;
+  if (parent)
+    reference = *parent;
+  else
+    reference.rotation = skinAxes;
+  if (from.rows() >= 3) return fit::fitSimilarity(from, to, Eigen::VectorXd(), true);
+  if (from.rows() == 2) return twoPointFit(from, to, reference.rotation, body);
+  if (from.rows() == 0 && !parent)
+    throw BadInput("", "skeleton placement: root body '" + body + "' has no point pairs");
+  if (from.rows() == 1)
+    reference.translation = to.row(0).transpose() - reference.scale * reference.rotation * from.row(0).transpose();
+  return reference;
+}
+
+// The pairs' fit, with the scale replaced by `scale` (> 0) and the centroids kept together.
+fit::SimilarityTransform fitBody(const MatrixX3d& from, const MatrixX3d& to, const fit::SimilarityTransform* parent,
+                                 const Eigen::Matrix3d& skinAxes, const std::string& body, double scale) {
+  fit::SimilarityTransform t = fitPairs(from, to, parent, skinAxes, body);
+  if (scale > 0 && from.rows() > 0) {
+    t.scale = scale;
+    t.translation = to.colwise().mean().transpose() - scale * t.rotation * from.colwise().mean().transpose();
+  }
+  return t;
+}
+
+}  // namespace
+
+SkeletonCorrespondence rajagopalToMakeHuman() {
+  SkeletonCorrespondence c;
+  // The atlas's upper facets: the top vertex pair of hat_spine.vtp, (−0.022146, 0.509427, ±0.017856) m
+  // in the torso frame; their midpoint in LPS mm.
+  c.landmarks.push_back({"atlas", "torso", Eigen::Vector3d(0.0, 22.146, 509.427)});
+  // The metacarpophalangeal joints of the index and little fingers: the centroid of the metacarpal's
+  // vertices within 10 mm of its end furthest from the wrist (metacarpal2/5_r/lvs.vtp at the model's
+  // scale factor 0.85), in the hand frame, LPS mm.
+  for (const double side : {1.0, -1.0}) {
+    const std::string s = side > 0 ? "_r" : "_l";
+    c.landmarks.push_back({"mcp2" + s, "hand" + s, Eigen::Vector3d(-17.145 * side, -4.112, -81.147)});
+    c.landmarks.push_back({"mcp5" + s, "hand" + s, Eigen::Vector3d(31.435 * side, 0.499, -67.941)});
+  }
+  c.bodies.push_back(
+      {"pelvis", {"femur_r", "femur_l"}, {"upperleg01.R", "upperleg01.L"}, {"femur_r", "femur_l", "torso"}});
+  c.bodies.push_back(pairs("torso", {"torso", "humerus_r", "humerus_l", "atlas"},
+                           {"spine03", "upperarm01.R", "upperarm01.L", "head-spine"}));
+  addSide(c, "r", "R");
+  addSide(c, "l", "L");
+  return c;
+}
+
+std::map<std::string, Eigen::Vector3d> jointPositions(const Skeleton& skeleton) {
+  const std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
+  std::map<std::string, Eigen::Vector3d> out;
+  for (std::size_t j = 0; j < world.size(); ++j) out[skeleton.joints[j].name] = world[j].translation();
+  return out;
+}
+
+SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorrespondence& correspondence,
+                                const std::map<std::string, Eigen::Vector3d>& targets,
+                                const Eigen::Matrix3d& skinAxes) {
+  const std::vector<Eigen::Isometry3d> world = model.restWorld();
+  const PointLookup lookup{model, world, correspondence, targets};
+  std::vector<const BodyCorrespondence*> byBody(model.joints.size(), nullptr);
+  bool twoPasses = false;
+  for (const BodyCorrespondence& c : correspondence.bodies) {
+    const int b = model.find(c.body);
+    if (b < 0) throw BadInput("", "skeleton placement: no body '" + c.body + "' in the model");
+    if (c.modelPoints.size() != c.targetPoints.size())
+      throw BadInput("", "skeleton placement: body '" + c.body + "' has unpaired points");
+    for (const std::string& other : c.scaleFrom)
+      if (model.find(other) < 0) throw BadInput("", "skeleton placement: no body '" + other + "' to take a scale from");
+    byBody[std::size_t(b)] = &c;
+    twoPasses = twoPasses || !c.scaleFrom.empty();
+  }
+  SkeletonPlacement out;
+  for (int pass = 0; pass < (twoPasses ? 2 : 1); ++pass) {
+    SkeletonPlacement next;
+    for (std::size_t b = 0; b < model.joints.size(); ++b) {
+      const BodyCorrespondence* c = byBody[b];
+      const std::size_t n = c ? c->modelPoints.size() : 0;
+      MatrixX3d from(n, 3), to(n, 3);
+      for (std::size_t i = 0; i < n; ++i) {
+        from.row(Eigen::Index(i)) = lookup.modelPoint(c->modelPoints[i]).transpose();
+        to.row(Eigen::Index(i)) = lookup.target(c->targetPoints[i]).transpose();
+      }
+      double scale = 0;  // 0: the pairs' own
+      if (pass == 1 && !c->scaleFrom.empty()) {
+        for (const std::string& other : c->scaleFrom) scale += out.bodies[std::size_t(model.find(other))].scale;
+        scale /= double(c->scaleFrom.size());
+      }
+      const int parent = model.joints[b].parent;
+      next.bodies.push_back(fitBody(from, to, parent >= 0 ? &next.bodies[std::size_t(parent)] : nullptr, skinAxes,
+                                    model.joints[b].name, scale));
+      next.rmsResidual.push_back(n ? std::sqrt((next.bodies.back().apply(from) - to).rowwise().squaredNorm().mean())
+                                   : 0.0);
+    }
+    out = std::move(next);
+  }
+  return out;
+}
+
+MatrixX3d placeBodyPoints(const Skeleton& model, const SkeletonPlacement& placement, int body, const MatrixX3d& local) {
+  if (body < 0 || std::size_t(body) >= model.joints.size() || placement.bodies.size() != model.joints.size())
+    throw UsageError("placeBodyPoints: body " + std::to_string(body) + " is not one of the placed model's");
+  const Eigen::Isometry3d rest = model.restWorld()[std::size_t(body)];
+  const MatrixX3d world = (local * rest.linear().transpose()).rowwise() + rest.translation().transpose();
+  return placement.bodies[std::size_t(body)].apply(world);
+}
+
+std::vector<MatrixX3d> placeMusclePaths(const Skeleton& model, const SkeletonPlacement& placement,
+                                        const std::vector<Muscle>& muscles) {
+  if (placement.bodies.size() != model.joints.size())
+    throw UsageError("placeMusclePaths: the placement is not of this model");
+  const std::vector<Eigen::Isometry3d> world = model.restWorld();
+  std::vector<MatrixX3d> paths;
+  for (const Muscle& muscle : muscles) {
+    MatrixX3d path(Eigen::Index(muscle.path.size()), 3);
+    for (std::size_t i = 0; i < muscle.path.size(); ++i) {
+      const PathPoint& p = muscle.path[i];
+      if (p.body < 0 || std::size_t(p.body) >= model.joints.size())
+        throw UsageError("placeMusclePaths: point '" + p.name + "' of muscle '" + muscle.name + "' is not on a body");
+      path.row(Eigen::Index(i)) = placement.bodies[std::size_t(p.body)]
+                                      .apply(Eigen::Vector3d(world[std::size_t(p.body)] * p.location))
+                                      .transpose();
+    }
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
+}  // namespace vesalius::transfer

@@ -1,0 +1,234 @@
+// `vesalius reference torso` and `vesalius transfer` on the test CT (seed 000): the torso reference built
+// from TotalSegmentator's labels, carried into its own body, into the same body with 8 mm more fat, and
+// into a wider, flatter body made from the same scan. The rules as numbers: tissues inside the target
+// (R5, R6), the same bones under extra fat (R3), long bones straight (R1), the trunk symmetric (R2), a
+// field that folds nowhere.
+#include "run_command.h"
+
+#include "vesalius/core/triangle_tree.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <iostream>
+
+namespace vesalius::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kCt = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/";
+
+std::string freshDir(const std::string& test) {
+  const fs::path d = fs::path(VESALIUS_TEST_OUTPUT) / "transfer" / test;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+std::string buildReference(const std::string& dir) {
+  const std::string out = dir + "/reference";
+  const CommandResult r = runVesalius({"reference", "torso", "--scan", kCt + "example_ct.nii.gz", "--labels",
+                                       kCt + "example_seg_total_v1_for_example_ct.nii.gz", "--label-table",
+                                       kCt + "labels_total_v1.tsv", "--out", out, "--progress", "none"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return out;
+}
+
+// The body of the test CT surfaced after `dilateMm` of extra tissue, on a grid whose spacing is scaled
+// by `stretch` (a wider or flatter person), centred where the original body was.
+std::string bodySurface(const std::string& dir, double dilateMm, const Eigen::Vector3d& stretch) {
+  const Image ct = io::readScan(kCt + "example_ct.nii.gz");
+  segmentation::Mask body = segmentation::segmentCtBody(ct, {});
+  if (dilateMm > 0) body = segmentation::dilateMm(body, dilateMm);
+  const Eigen::Vector3d centre = body.geometry.indexToWorld(0.5 * (body.geometry.size.cast<double>() - Eigen::Vector3d::Ones()));
+  body.geometry.spacing = body.geometry.spacing.cwiseProduct(stretch);
+  body.geometry.origin += centre - body.geometry.indexToWorld(0.5 * (body.geometry.size.cast<double>() - Eigen::Vector3d::Ones()));
+  meshing::SurfaceOptions surface;
+  surface.targetFaces = 16000;  // a mesh unlike the reference skin's 20000 faces
+  const std::string path = dir + "/target.obj";
+  io::writeTriMesh(path, meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, surface));
+  return path;
+}
+
+nlohmann::json transfer(const std::string& reference, const std::string& target, const std::string& out,
+                        double fatMm, const std::vector<std::string>& more = {}) {
+  std::vector<std::string> args{"transfer", "--reference", reference, "--target-skin", target, "--fat",
+                                std::to_string(fatMm), "--voxel-size", "4", "--out", out, "--report",
+                                out + ".json", "--progress", "none"};
+  args.insert(args.end(), more.begin(), more.end());
+  const CommandResult r = runVesalius(args);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(out + ".json");
+  return nlohmann::json::parse(in);
+}
+
+// Mean distance (mm) from the vertices of each bone in `a` to the same bone's surface in `b`, the largest
+// over the bones.
+double worstBoneDistance(const ReferenceAnatomy& a, const ReferenceAnatomy& b) {
+  double worst = 0;
+  for (std::size_t t = 0; t < a.tissues.size(); ++t) {
+    if (a.tissues[t].kind != TissueKind::Bone) continue;
+    const TriangleTree tree(b.tissues[t].mesh.V, b.tissues[t].mesh.F);
+    double sum = 0;
+    for (const ClosestPoint& c : tree.closest(a.tissues[t].mesh.V)) sum += std::sqrt(c.squaredDistance);
+    worst = std::max(worst, sum / double(a.tissues[t].mesh.V.rows()));
+  }
+  return worst;
+}
+
+// R1: long bones no more bent than the reference's (by 1 % of their length); R2: the trunk no less
+// symmetric than the reference (by 1 mm). Groups named starting with `skip` are not checked for R1.
+void expectStraightAndSymmetric(const nlohmann::json& boneGroups, const std::string& skip = "") {
+  for (const nlohmann::json& group : boneGroups) {
+    const std::string name = group["group"];
+    if (group.contains("centre_line_deviation") && (skip.empty() || name.rfind(skip, 0) != 0)) {
+      for (const auto& [bone, d] : group["centre_line_deviation"].items())
+        EXPECT_LT(d["registered"].get<double>(), d["reference"].get<double>() + 0.01) << bone;
+    }
+    if (group.contains("mirror_asymmetry_mm")) {
+      const nlohmann::json& d = group["mirror_asymmetry_mm"];
+      EXPECT_LT(d["registered"].get<double>(), d["reference"].get<double>() + 1.0) << name;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(CliTransfer, TorsoReferenceFromTheLabelledCt) {
+  const std::string dir = freshDir("reference");
+  const ReferenceAnatomy reference = io::readReferenceAnatomy(buildReference(dir));
+  EXPECT_EQ(reference.tissues.size(), 59u);
+  int bones = 0, symmetric = 0;
+  for (const ReferenceTissue& t : reference.tissues) bones += t.kind == TissueKind::Bone, symmetric += t.symmetric;
+  EXPECT_EQ(bones, 24);
+  EXPECT_EQ(symmetric, 22);  // the trunk: 7 vertebrae, 12 ribs, the pelvis (both hips, sacrum); not the femurs
+  // The sagittal plane from the left/right pairs: within 3° of the scan's L axis, through the spine.
+  EXPECT_GT(reference.sagittal.normal.x(), std::cos(3.0 * M_PI / 180));
+  const io::TriMeshSummary skin = io::summarize(reference.skin);
+  EXPECT_EQ(skin.boundaryEdges, 0);
+}
+
+TEST(CliTransfer, TheSameBodyGivesTheSameAnatomy) {
+  const std::string dir = freshDir("same");
+  const std::string reference = buildReference(dir);
+  const nlohmann::json report = transfer(reference, reference + "/skin.obj", dir + "/out", 0);
+  const ReferenceAnatomy a = io::readReferenceAnatomy(reference), b = io::readReferenceAnatomy(dir + "/out");
+  EXPECT_LT(worstBoneDistance(b, a), 0.05);
+  EXPECT_GT(report["metrics"]["jacobian_min"].get<double>(), 0.99);
+}
+
+TEST(CliTransfer, ExtraFatKeepsTheBones) {
+  const std::string dir = freshDir("fat");
+  const std::string reference = buildReference(dir);
+  const nlohmann::json report = transfer(reference, bodySurface(dir, 8.0, Eigen::Vector3d::Ones()), dir + "/out", 8.0);
+  const ReferenceAnatomy a = io::readReferenceAnatomy(reference), b = io::readReferenceAnatomy(dir + "/out");
+  // The eroded target should be the reference skin again; it is as close as a dilation on 3 mm voxels
+  // and a re-surfacing allow.
+  const TriMesh eroded = io::readTriMesh(dir + "/out/eroded_skin.obj");
+  const TriangleTree skin(a.skin.V, a.skin.F);
+  double sum = 0;
+  for (const ClosestPoint& c : skin.closest(eroded.V)) sum += std::sqrt(c.squaredDistance);
+  const double erodedToReference = sum / double(eroded.V.rows());
+  std::cout << "eroded skin to reference skin: " << erodedToReference << " mm; worst bone: " << worstBoneDistance(b, a)
+            << " mm; Jacobian min " << report["metrics"]["jacobian_min"] << " at " << report["metrics"]["jacobian_min_at"] << "\n";
+  EXPECT_LT(erodedToReference, 2.0);
+  // R3: the skeleton does not depend on the fat: the bones move less than the eroded skin's own error.
+  EXPECT_LT(worstBoneDistance(b, a), std::min(1.5, erodedToReference));
+  // The interpolation folds nowhere inside; at the skin, the registered and eroded vertices may cross
+  // where the dilation filled a crease of the body (measured: one cell, det −0.40, at the front of the
+  // chest), and the report says so.
+  EXPECT_GT(report["metrics"]["jacobian_interior_min"].get<double>(), 0.0);
+  EXPECT_LE(report["metrics"]["jacobian_nonpositive_cells"].get<long>(), 3);
+}
+
+TEST(CliTransfer, AWiderFlatterBody) {
+  const std::string dir = freshDir("wider");
+  const std::string reference = buildReference(dir);
+  const nlohmann::json report =
+      transfer(reference, bodySurface(dir, 0, {1.12, 0.92, 1.0}), dir + "/out", 0, {"--png", dir + "/wider.png"});
+  // The renders of the result and the reference are PNGs with a picture in them: an empty 800 x 800
+  // background compresses to a few kB, the anatomy to far more.
+  for (const char* png : {"/wider.png", "/wider_reference.png"}) {
+    std::ifstream in(dir + png, std::ios::binary);
+    std::string signature(8, '\0');
+    in.read(signature.data(), 8);
+    EXPECT_EQ(signature, std::string("\x89PNG\r\n\x1a\n", 8)) << png;
+    EXPECT_GT(fs::file_size(dir + png), 40000u) << png;
+  }
+  const nlohmann::json& m = report["metrics"];
+  EXPECT_GT(m["jacobian_min"].get<double>(), 0.0);
+  EXPECT_GT(m["jacobian_interior_min"].get<double>(), 0.0);
+  expectStraightAndSymmetric(m["bone_groups"]);
+  // R5, R6: what was inside the reference skin by a field voxel or more stays inside the target's; the
+  // tissues flush with the scan's cut (lungs, liver, spleen at the top slice) may cross the cut's cap by
+  // the field's first-order error (measured: 635 of 66,400 vertices, by at most 1.9 mm).
+  std::cout << m["pushed_out_vertices"] << " of " << m["tissue_vertices"] << " vertices pushed out, worst by "
+            << m["pushed_out_worst_mm"] << " mm, " << m["pushed_out_deep_vertices"] << " of them deep\n";
+  EXPECT_EQ(m["pushed_out_deep_vertices"].get<long>(), 0);
+  EXPECT_LT(m["pushed_out_worst_mm"].get<double>(), 2.5);
+}
+
+// The full-body reference: MakeHuman's neutral skin with Rajagopal's OpenSim bones placed inside by
+// seed 004, carried into the thin MakeHuman body (its own mesh, registered, not taken by vertex index).
+// What holds: long bones stay straight and the trunk symmetric (R1, R2), every bone maps with a positive
+// determinant, points on bones move with them (R7). What does not yet (docs/methods/anatomy-transfer.md):
+// the hands, whose bones the placement leaves partly outside the skin and whose skin registers worst, fold
+// the field and push bone vertices out; the report counts both and this test bounds them.
+TEST(CliTransfer, FullBodyIntoTheThinBody) {
+  const std::string dir = freshDir("full-body");
+  const std::string body = std::string(VESALIUS_TESTDATA) + "/body/";
+  const CommandResult made = runVesalius({"reference", "full-body", "--skin", body + "shapes/mh_neutral_body.obj",
+                                          "--skeleton", body + "default.mhskel", "--model",
+                                          std::string(VESALIUS_TESTDATA) + "/skeleton-opensim/Rajagopal2016.osim",
+                                          "--out", dir + "/reference", "--progress", "none"});
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  const ReferenceAnatomy reference = io::readReferenceAnatomy(dir + "/reference");
+  EXPECT_EQ(reference.tissues.size(), 81u);
+  EXPECT_EQ(reference.points.size(), 288u);
+  const CommandResult r = runVesalius({"transfer", "--reference", dir + "/reference", "--target-skin",
+                                       body + "shapes/mh_male_young_thin_body.obj", "--space", "makehuman",
+                                       "--voxel-size", "6", "--out", dir + "/out", "--report", dir + "/out.json",
+                                       "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(dir + "/out.json");
+  const nlohmann::json m = nlohmann::json::parse(in)["metrics"];
+  EXPECT_LT(m["registration_mean_distance_mm"].get<double>(), 1.0);
+  for (const nlohmann::json& group : m["bone_groups"]) EXPECT_GT(group["determinant"].get<double>(), 0.3) << group["group"];
+  expectStraightAndSymmetric(m["bone_groups"], "hand");
+  // R7: muscle path points on a bone (within 0.5 mm of its surface) stay on it (within 1 mm).
+  const ReferenceAnatomy out = io::readReferenceAnatomy(dir + "/out");
+  ASSERT_EQ(out.points.size(), reference.points.size());
+  std::map<std::string, int> tissueIndex;
+  for (int t = 0; t < int(reference.tissues.size()); ++t) tissueIndex[reference.tissues[t].name] = t;
+  int onBone = 0;
+  for (std::size_t p = 0; p < reference.points.size(); ++p) {
+    const auto it = tissueIndex.find(reference.points[p].tissue);
+    if (it == tissueIndex.end()) continue;
+    const TriMesh& before = reference.tissues[it->second].mesh;
+    const TriMesh& after = out.tissues[it->second].mesh;
+    if (TriangleTree(before.V, before.F).closest(reference.points[p].position).squaredDistance > 0.25) continue;
+    ++onBone;
+    EXPECT_LT(std::sqrt(TriangleTree(after.V, after.F).closest(out.points[p].position).squaredDistance), 1.0)
+        << reference.points[p].name;
+  }
+  EXPECT_GT(onBone, 20);
+  // Known gaps, bounded so that a regression shows (measured: 7 folded interior cells, all in the hands;
+  // 366 vertices a voxel or more inside the reference skin end outside the target's).
+  std::cout << "interior folds " << m["jacobian_interior_nonpositive_cells"] << ", deep vertices pushed out "
+            << m["pushed_out_deep_vertices"] << "\n";
+  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 20);
+  EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 600);
+}
+
+}  // namespace vesalius::test

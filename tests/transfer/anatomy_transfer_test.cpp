@@ -1,0 +1,102 @@
+// Anatomy transfer on a synthetic body (seed 000 §7–8): the rules R1, R2, R5–R7 as numbers.
+#include "vesalius/transfer/anatomy_transfer.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/transfer/anatomy_checks.h"
+#include "test_shapes.h"
+
+#include <gtest/gtest.h>
+
+using namespace vesalius;
+using namespace vesalius::transfer;
+
+namespace {
+
+TriMesh ellipsoid(int levels, const Eigen::Vector3d& radii, const Eigen::Vector3d& centre) {
+  TriMesh m = test::sphere(levels);
+  m.V = (m.V * radii.asDiagonal()).rowwise() + centre.transpose();
+  return m;
+}
+
+// A torso-like body (L-R 160, P-A 100, S-I 300 mm half-axes 80, 50, 150): a spine on the sagittal
+// plane, two long bones left and right, an organ.
+ReferenceAnatomy syntheticBody() {
+  ReferenceAnatomy body;
+  body.name = "synthetic";
+  body.skin = ellipsoid(5, {80, 50, 150}, {0, 0, 0});
+  body.sagittal = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
+  body.tissues.push_back({"spine", TissueKind::Bone, "trunk", true, ellipsoid(3, {8, 8, 100}, {0, 25, 0})});
+  body.tissues.push_back({"femur_left", TissueKind::Bone, "", false, ellipsoid(3, {7, 7, 60}, {40, 0, -60})});
+  body.tissues.push_back({"femur_right", TissueKind::Bone, "", false, ellipsoid(3, {7, 7, 60}, {-40, 0, -60})});
+  body.tissues.push_back({"liver", TissueKind::Organ, "", false, ellipsoid(3, {30, 20, 25}, {-20, -10, 60})});
+  body.points.push_back({"insertion", "femur_left", Eigen::Vector3d(47, 0, -60)});
+  body.points.push_back({"organ centre", "liver", Eigen::Vector3d(-20, -10, 60)});
+  return body;
+}
+
+Grid<std::uint8_t> insideOf(const ReferenceAnatomy& body, double voxel) {
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = voxel;
+  grid.marginMm = 3 * voxel;
+  return meshing::meshInsideMask(body.skin, meshing::coveringGrid({&body.skin}, grid));
+}
+
+// A smooth, non-affine target: wider hips, a belly pushed forward, the whole body 6 % taller.
+MatrixX3d bulgingTarget(const MatrixX3d& V) {
+  MatrixX3d T = V;
+  for (Eigen::Index r = 0; r < V.rows(); ++r) {
+    const double z = V(r, 2) / 150;
+    T(r, 0) *= 1.0 + 0.15 * std::max(0.0, -z);
+    if (V(r, 1) < 0) T(r, 1) -= 15 * (1 - z * z) * (-V(r, 1) / 50);
+    T(r, 2) *= 1.06;
+  }
+  return T;
+}
+
+}  // namespace
+
+TEST(AnatomyTransfer, TheSameSkinGivesTheSameAnatomy) {
+  const ReferenceAnatomy body = syntheticBody();
+  const TransferredAnatomy result = transferAnatomy(body, body.skin.V, insideOf(body, 4));
+  for (std::size_t t = 0; t < body.tissues.size(); ++t)
+    EXPECT_LT((result.tissues[t] - body.tissues[t].mesh.V).cwiseAbs().maxCoeff(), 1e-3) << body.tissues[t].name;
+  EXPECT_LT((result.sagittal.normal - Eigen::Vector3d::UnitX()).norm(), 1e-6);
+}
+
+TEST(AnatomyTransfer, BonesStayStraightAndTheTrunkSymmetric) {
+  const ReferenceAnatomy body = syntheticBody();
+  const TransferredAnatomy result = transferAnatomy(body, bulgingTarget(body.skin.V), insideOf(body, 4));
+  const MatrixX3i& spineF = body.tissues[0].mesh.F;
+  // R2: the spine is mirror-symmetric about the target's plane as it was about the reference's.
+  EXPECT_LT(mirrorAsymmetry(result.tissues[0], spineF, result.sagittal), 0.05);
+  // R1: long bones stay straight; the skin field alone bends them (the hips widen along them).
+  for (int t : {1, 2}) {
+    const MatrixX3d& rest = body.tissues[t].mesh.V;
+    EXPECT_LT(centreLineDeviation(rest, rest), 1e-9);
+    EXPECT_LT(centreLineDeviation(rest, result.tissues[t]), 1e-9);
+    EXPECT_GT(centreLineDeviation(rest, result.interpolated[t]), 0.002);
+  }
+  // R7: the insertion on the femur moves with it exactly.
+  const AffineMap& femur = result.boneGroups[1].map;
+  EXPECT_LT((result.points.row(0).transpose() - femur.apply(body.points[0].position)).norm(), 1e-9);
+  // The field folds nowhere.
+  EXPECT_GT(jacobianDeterminant(result.finalField).minimum, 0.3);
+  // R5/R6: every tissue vertex lies inside the target skin (an ellipsoid-like shape: checked against the
+  // target's inside mask, sampled at each vertex).
+  ReferenceAnatomy target = body;
+  target.skin.V = bulgingTarget(body.skin.V);
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = 2;
+  const Grid<std::uint8_t> inside = meshing::meshInsideMask(target.skin, meshing::coveringGrid({&target.skin}, grid));
+  for (std::size_t t = 0; t < body.tissues.size(); ++t)
+    for (Eigen::Index r = 0; r < result.tissues[t].rows(); ++r) {
+      const Eigen::Vector3d index = inside.geometry.worldToIndex(result.tissues[t].row(r).transpose()).array().round();
+      ASSERT_TRUE(inside.at(int(index.x()), int(index.y()), int(index.z()))) << body.tissues[t].name << " vertex " << r;
+    }
+}
+
+TEST(AnatomyTransfer, WrongSkinSizeIsRefused) {
+  const ReferenceAnatomy body = syntheticBody();
+  EXPECT_THROW(transferAnatomy(body, body.skin.V.topRows(10), insideOf(body, 6)), BadInput);
+}

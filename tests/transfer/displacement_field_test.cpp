@@ -1,0 +1,121 @@
+// Displacement fields from scattered boundary displacements (seed 000 §7).
+#include "vesalius/transfer/displacement_field.h"
+
+#include "vesalius/meshing/mesh_volume.h"
+#include "test_shapes.h"
+
+#include <gtest/gtest.h>
+
+using namespace vesalius;
+using namespace vesalius::transfer;
+
+namespace {
+
+struct Body {
+  TriMesh skin;
+  Grid<std::uint8_t> inside;
+};
+
+Body sphereBody(double radius, double voxel) {
+  Body body;
+  body.skin = test::sphere(5, radius);  // 8192 triangles, vertices about 2 mm apart at radius 40
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = voxel;
+  grid.marginMm = 2 * voxel;
+  body.inside = meshing::meshInsideMask(body.skin, meshing::coveringGrid({&body.skin}, grid));
+  return body;
+}
+
+// The centres of the inside voxels that touch an outside voxel: points where the Nearest splat fixes
+// exactly the given value, so that the fields below are exact up to the solver's tolerance.
+MatrixX3d boundaryVoxelCentres(const Grid<std::uint8_t>& inside) {
+  const GridGeometry& g = inside.geometry;
+  std::vector<Eigen::Vector3d> centres;
+  for (int k = 1; k + 1 < g.size.z(); ++k)
+    for (int j = 1; j + 1 < g.size.y(); ++j)
+      for (int i = 1; i + 1 < g.size.x(); ++i)
+        if (inside.at(i, j, k) && !(inside.at(i - 1, j, k) && inside.at(i + 1, j, k) && inside.at(i, j - 1, k) &&
+                                    inside.at(i, j + 1, k) && inside.at(i, j, k - 1) && inside.at(i, j, k + 1)))
+          centres.push_back(g.indexToWorld(Eigen::Vector3d(i, j, k)));
+  MatrixX3d P(Eigen::Index(centres.size()), 3);
+  for (std::size_t r = 0; r < centres.size(); ++r) P.row(Eigen::Index(r)) = centres[r].transpose();
+  return P;
+}
+
+MatrixX3d affineDisplacement(const MatrixX3d& P, const Eigen::Matrix3d& M, const Eigen::Vector3d& c) {
+  return (P * M.transpose()).rowwise() + c.transpose();
+}
+
+const Eigen::Matrix3d kM = (Eigen::Matrix3d() << 0.2, 0.05, 0, -0.03, -0.1, 0.04, 0.02, 0, 0.15).finished();
+const Eigen::Vector3d kC(3, -2, 5);
+
+}  // namespace
+
+TEST(DisplacementField, AnAffineDisplacementIsExactInsideAndItsJacobianToo) {
+  const Body body = sphereBody(40, 2);
+  const MatrixX3d P = boundaryVoxelCentres(body.inside);
+  DisplacementFieldOptions options;
+  options.splat.method = SplatMethod::Nearest;
+  const DisplacementField field = interpolateDisplacements(body.inside, P, affineDisplacement(P, kM, kC), options);
+  // Linear functions are harmonic: the interior is the affine map itself.
+  const MatrixX3d inner = test::sphere(3, 25).V;
+  EXPECT_LT((field.displace(inner) - inner - affineDisplacement(inner, kM, kC)).cwiseAbs().maxCoeff(), 1e-5);
+  const JacobianSummary jacobian = jacobianDeterminant(field);
+  EXPECT_GT(jacobian.measuredCells, 20000);
+  EXPECT_NEAR(jacobian.minimum, (Eigen::Matrix3d::Identity() + kM).determinant(), 1e-6);
+  EXPECT_EQ(jacobian.nonPositiveCells, 0);
+}
+
+TEST(DisplacementField, SkinVerticesGiveTheFieldToFirstOrderInTheSpacing) {
+  // The trilinear splat fixes each shell voxel to a weighted mean of nearby vertex values, i.e. the
+  // field at a point up to a voxel from the voxel centre (point_constraints.h): an error of order
+  // h |∇u| = 2 mm x 0.27 here, not round-off.
+  const Body body = sphereBody(40, 2);
+  const DisplacementField field =
+      interpolateDisplacements(body.inside, body.skin.V, affineDisplacement(body.skin.V, kM, kC));
+  const MatrixX3d inner = test::sphere(3, 25).V;
+  EXPECT_LT((field.displace(inner) - inner - affineDisplacement(inner, kM, kC)).cwiseAbs().maxCoeff(), 0.3);
+  EXPECT_LT((field.displace(body.skin.V) - body.skin.V - affineDisplacement(body.skin.V, kM, kC)).cwiseAbs().maxCoeff(),
+            0.1);
+}
+
+TEST(DisplacementField, AnInvertingDisplacementShowsAsFolds) {
+  const Body body = sphereBody(30, 3);
+  const MatrixX3d P = boundaryVoxelCentres(body.inside);
+  DisplacementFieldOptions options;
+  options.splat.method = SplatMethod::Nearest;
+  // x ↦ −x: det(I + ∇u) = −1 everywhere.
+  const JacobianSummary jacobian = jacobianDeterminant(interpolateDisplacements(body.inside, P, -2.0 * P, options));
+  EXPECT_NEAR(jacobian.minimum, -1.0, 1e-6);
+  EXPECT_EQ(jacobian.nonPositiveCells, jacobian.measuredCells);
+  EXPECT_GT(jacobian.interiorCells, 1000);
+  EXPECT_LT(jacobian.interiorCells, jacobian.measuredCells);
+  EXPECT_EQ(jacobian.interiorNonPositiveCells, jacobian.interiorCells);
+  EXPECT_NEAR(jacobian.interiorMinimum, -1.0, 1e-6);
+}
+
+TEST(DisplacementField, ABulgeStaysHarmonicAndBounded) {
+  const Body body = sphereBody(40, 2);
+  // Push the upper cap outward by up to 8 mm: the interior moves less than the skin (maximum principle).
+  MatrixX3d u = MatrixX3d::Zero(body.skin.V.rows(), 3);
+  for (Eigen::Index r = 0; r < u.rows(); ++r) {
+    const double z = body.skin.V(r, 2) / 40;
+    if (z > 0) u(r, 2) = 8 * z * z;
+  }
+  const DisplacementField field = interpolateDisplacements(body.inside, body.skin.V, u);
+  const MatrixX3d inner = test::sphere(3, 20).V;
+  const MatrixX3d moved = field.displace(inner) - inner;
+  EXPECT_LE(moved.col(2).maxCoeff(), 8.0);
+  EXPECT_GE(moved.col(2).minCoeff(), -1e-6);
+  EXPECT_GT(moved.col(2).maxCoeff(), 0.5);
+  EXPECT_GT(jacobianDeterminant(field).minimum, 0.5);
+}
+
+TEST(DisplacementField, SecondSolveStartsFromTheFirst) {
+  const Body body = sphereBody(30, 3);
+  const MatrixX3d u = 0.1 * body.skin.V;
+  const DisplacementField first = interpolateDisplacements(body.inside, body.skin.V, u);
+  const DisplacementField second = interpolateDisplacements(body.inside, body.skin.V, u, {}, &first);
+  EXPECT_LE(second.solves[0].iterations, 1);
+  EXPECT_GT(first.solves[0].iterations, 1);
+}
