@@ -78,24 +78,26 @@ Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const st
   return {point / pairs, normal.normalized()};
 }
 
-// Skin vertices on the caps where the scan's first or last axial slice cut the body: beyond that slice's
-// centre (the surface of a mask that touches the volume's end closes half a voxel past it).
+// Skin vertices on the caps where the scan's field of view cut the body: beyond the centre of the first
+// or last slice along any axis that the body touches (the surface of a mask that touches the volume's end
+// closes half a voxel past it). The axial ends are the usual cuts; a CT's lateral edges cut the arms.
 std::vector<int> cutVertices(const TriMesh& skin, const segmentation::Mask& body) {
   const GridGeometry& g = body.geometry;
-  const int axis = segmentation::axialAxis(g);
-  const int last = g.size[axis] - 1;
-  bool touchesFirst = false, touchesLast = false;
+  Eigen::Array<bool, 3, 1> touchesFirst(false, false, false), touchesLast(false, false, false);
   for (int k = 0; k < g.size.z(); ++k)
     for (int j = 0; j < g.size.y(); ++j)
       for (int i = 0; i < g.size.x(); ++i) {
         if (!body.at(i, j, k)) continue;
-        const int along = Eigen::Vector3i(i, j, k)[axis];
-        touchesFirst |= along == 0, touchesLast |= along == last;
+        const Eigen::Vector3i at(i, j, k);
+        for (int a = 0; a < 3; ++a) touchesFirst[a] |= at[a] == 0, touchesLast[a] |= at[a] == g.size[a] - 1;
       }
   std::vector<int> cut;
   for (Eigen::Index v = 0; v < skin.V.rows(); ++v) {
-    const double along = g.worldToIndex(skin.V.row(v).transpose())[axis];
-    if ((touchesFirst && along < -0.25) || (touchesLast && along > last + 0.25)) cut.push_back(int(v));
+    const Eigen::Vector3d index = g.worldToIndex(skin.V.row(v).transpose());
+    bool isCut = false;
+    for (int a = 0; a < 3; ++a)
+      isCut |= (touchesFirst[a] && index[a] < -0.25) || (touchesLast[a] && index[a] > g.size[a] - 1 + 0.25);
+    if (isCut) cut.push_back(int(v));
   }
   return cut;
 }

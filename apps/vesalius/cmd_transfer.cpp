@@ -16,8 +16,6 @@
 #include "vesalius/transfer/skin_registration.h"
 #include "vesalius/viz/surface_render.h"
 
-#include <tbb/parallel_for.h>
-
 #include <filesystem>
 #include <limits>
 #include <iomanip>
@@ -43,16 +41,9 @@ TriMesh readTarget(const TransferOptions& o) {
   return skin;
 }
 
-// The thickness to erode each registered skin vertex by: the given one, except on the skin the scan's
-// field of view cut (no fat there), tapered linearly from the cut's rim over the thickness itself, so that
-// the eroded wall meets the cap without a step (a step folds the field where they meet).
-Eigen::VectorXd taperAtCut(const ReferenceAnatomy& reference, const MatrixX3d& skin, Eigen::VectorXd thickness) {
-  if (reference.skinCutVertices.empty()) return thickness;
-  tbb::parallel_for(Eigen::Index(0), skin.rows(), [&](Eigen::Index v) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const int c : reference.skinCutVertices) nearest = std::min(nearest, (skin.row(v) - skin.row(c)).squaredNorm());
-    if (thickness[v] > 0) thickness[v] *= std::min(1.0, std::sqrt(nearest) / thickness[v]);
-  });
+// No fat where the scan's field of view cut the body: those vertices are not skin.
+Eigen::VectorXd withoutCut(const ReferenceAnatomy& reference, Eigen::VectorXd thickness) {
+  for (const int v : reference.skinCutVertices) thickness[v] = 0;
   return thickness;
 }
 
@@ -222,7 +213,7 @@ void runTransfer(const TransferOptions& o) {
   report.parameter("fat_kind", fatKind);
   if (fat.maxCoeff() > 0) {
     auto timer = report.time("erosion");
-    const Eigen::VectorXd thickness = taperAtCut(reference, registered.V, fat);
+    const Eigen::VectorXd thickness = withoutCut(reference, fat);
     const fat::ErodedSkin e = fat::erodeSkin(registered.V, reference.skin.F, thickness);
     eroded.V = e.V;
     report.metric("erosion_mean_mm", e.meanDisplacement);

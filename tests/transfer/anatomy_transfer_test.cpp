@@ -96,6 +96,21 @@ TEST(AnatomyTransfer, BonesStayStraightAndTheTrunkSymmetric) {
     }
 }
 
+TEST(AnatomyTransfer, CutSkinFixesNothing) {
+  // The top of the body is cut (as a scan's field of view cuts it): wherever the registration slid those
+  // vertices, the anatomy does not follow; marked as skin, they drag the organ below them along.
+  ReferenceAnatomy body = syntheticBody();
+  MatrixX3d target = body.skin.V;
+  for (Eigen::Index v = 0; v < target.rows(); ++v)
+    if (body.skin.V(v, 2) > 120) body.skinCutVertices.push_back(int(v)), target(v, 0) += 10;
+  const Grid<std::uint8_t> inside = insideOf(body, 4);
+  const double cutMoved = (transferAnatomy(body, target, inside).tissues[3] - body.tissues[3].mesh.V).cwiseAbs().maxCoeff();
+  body.skinCutVertices.clear();
+  const double skinMoved = (transferAnatomy(body, target, inside).tissues[3] - body.tissues[3].mesh.V).cwiseAbs().maxCoeff();
+  EXPECT_LT(cutMoved, 1e-3);
+  EXPECT_GT(skinMoved, 0.1);
+}
+
 TEST(AnatomyTransfer, WrongSkinSizeIsRefused) {
   const ReferenceAnatomy body = syntheticBody();
   EXPECT_THROW(transferAnatomy(body, body.skin.V.topRows(10), insideOf(body, 6)), BadInput);

@@ -111,8 +111,17 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   TransferredAnatomy result;
 
   auto start = std::chrono::steady_clock::now();
-  const MatrixX3d skinDisplacement = targetSkin - reference.skin.V;
-  result.skinField = interpolateDisplacements(referenceInside, reference.skin.V, skinDisplacement, options.field);
+  // Cut skin is not skin: where a scan's field of view cut the body, the body goes on, so those vertices
+  // fix nothing and the field runs out to the cut freely (zero flux) instead of following how the
+  // registration happened to slide them over the flat cap.
+  std::vector<std::uint8_t> cut(std::size_t(reference.skin.V.rows()), 0);
+  for (const int v : reference.skinCutVertices) cut[std::size_t(v)] = 1;
+  std::vector<Eigen::Vector3d> fixedPoints, fixedValues;
+  for (Eigen::Index r = 0; r < targetSkin.rows(); ++r)
+    if (!cut[std::size_t(r)])
+      fixedPoints.push_back(reference.skin.V.row(r).transpose()),
+          fixedValues.push_back((targetSkin.row(r) - reference.skin.V.row(r)).transpose());
+  result.skinField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues), options.field);
   std::vector<MatrixX3d> rest;
   for (const ReferenceTissue& tissue : reference.tissues) {
     rest.push_back(tissue.mesh.V);
@@ -129,9 +138,6 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   result.secondsBones = secondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  std::vector<Eigen::Vector3d> fixedPoints, fixedValues;
-  for (Eigen::Index r = 0; r < skinDisplacement.rows(); ++r)
-    fixedPoints.push_back(reference.skin.V.row(r).transpose()), fixedValues.push_back(skinDisplacement.row(r).transpose());
   for (const BoneGroupMap& group : result.boneGroups)
     for (const int t : group.tissues)
       appendDeepRows(referenceInside, rest[t], group.map.apply(rest[t]) - rest[t], fixedPoints, fixedValues);

@@ -2,7 +2,8 @@
 // where every reference skin vertex lands in the target (skin registration §4, then erosion §5).
 //
 //   1. Interpolation (§7): the skin displacement, fixed on the skin, is extended harmonically into the
-//      reference body (displacement_field.h).
+//      reference body (displacement_field.h). Cut skin vertices (ReferenceAnatomy::skinCutVertices, where
+//      a scan's field of view cut the body) fix nothing: the body goes on beyond them.
 //   2. Bone registration (§8): each bone group moves by the affine map that best fits its interpolated
 //      position (bone_registration.h), from its vertices at least a cell deep inside the reference skin
 //      (all of them if fewer than 4 are), as the field is extrapolated only a few cells beyond the skin;
