@@ -43,7 +43,8 @@ Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isomet
 MatrixX3d AnatomyRig::centres() const {
   const auto found = tets.vertexAttributes.real.find("cor_centre");
   if (found == tets.vertexAttributes.real.end() || found->second.cols() != 3)
-    throw BadInput("rig.vtu", "has no centres of rotation for CoR skinning (make it with `vesalius rig --cor-centres`)");
+    throw BadInput("rig.vtu", "has no centres of rotation for CoR skinning (it was made with --no-cor-centres; "
+                              "run `vesalius rig` without it)");
   return found->second;
 }
 

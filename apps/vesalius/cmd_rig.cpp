@@ -31,7 +31,7 @@ struct RigOptions {
   std::vector<std::string> tissues;
   double voxelSize = 4.0;
   long targetTets = 100000;
-  bool corCentres = false;
+  bool corCentres = true;
   posing::BoneCapsuleOptions capsules;
   CommonOptions common;
 };
@@ -101,6 +101,7 @@ void runRig(const RigOptions& o) {
   report.parameter("target_tets", o.targetTets);
   report.parameter("capsule_radius_fraction", o.capsules.radiusFraction);
   report.parameter("capsule_end_trim", o.capsules.endTrim);
+  report.parameter("cor_centres", o.corCentres);
   Progress progress(o.common.progressStyle());
 
   AnatomyRig rig;
@@ -166,12 +167,14 @@ void addRigCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--capsule-trim", o->capsules.endTrim, "Fraction of each bone left free at both ends")
       ->capture_default_str();
-  cmd->add_flag("--cor-centres", o->corCentres,
-                "Also compute the centres of rotation for `pose --method cor` (minutes with many bones)");
+  cmd->add_flag("--cor-centres,!--no-cor-centres", o->corCentres,
+                "Compute the centres of rotation that `pose --method cor` needs (default; a few seconds for the "
+                "body's 50 bones); --no-cor-centres skips them");
   cmd->add_option("--out", o->out, "Anatomy directory to write (rig.vtu, bones.txt, skeleton.bvh, meshes/)")->required();
   addCommonOptions(*cmd, o->common);
   cmd->footer(
-      "Example:\n  vesalius rig --skin testdata/body/shapes/mh_neutral_body.obj "
+      "Example (with the centres of rotation for `pose --method cor`; add --no-cor-centres to skip them):\n"
+      "  vesalius rig --skin testdata/body/shapes/mh_neutral_body.obj "
       "--skeleton testdata/body/default.mhskel --out body-rig\n"
       "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.");
   cmd->callback([o] { runRig(*o); });

@@ -5,7 +5,9 @@
 //   2. CoR centres, clustered against brute force; brute force is timed on an even sample of the vertices
 //      (its cost per vertex does not depend on which) and scaled to the whole mesh;
 //   3. one skinning frame of the tet mesh with LBS, DQS and CoR (the seed's Table 2 compares their rates);
-//   4. mapping 1.3M tissue points into the tet mesh (the seed's §3.4 count) and carrying them posed.
+//   4. mapping 1.3M tissue points into the tet mesh (the seed's §3.4 count) and carrying them posed;
+//   5. CoR centres again with many bones (the MakeHuman rig has 50): the bar at 3 cells per unit with its
+//      bone cores cut into pieces, 26 bones, so that a vertex feels many bone pairs.
 // Usage: bench_posing [cells per unit, default 6] [brute-force sample, default 24].
 #include "bench_support.h"
 #include "posing_test_support.h"
@@ -19,9 +21,11 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <vector>
 
 using namespace vesalius;
 
@@ -37,6 +41,26 @@ double secondsPerFrame(Skin skin) {
            for (int f = 0; f < kFrames; ++f) skin();
          }) /
          kFrames;
+}
+
+// The four-bone bar with each bone core cut along the bar into pieces 1 long, 0.5 apart (the gaps become
+// tissue), the pieces numbered in order: of the 32 places, 26 hold bone (the others fall in the joints).
+test::BoneBar manyBoneBar(int cells) {
+  test::BoneBar bar = test::fourBoneBar(cells);
+  std::vector<int> column(32, -1);
+  for (Eigen::Index v = 0; v < bar.boneOfVertex.size(); ++v) {
+    if (bar.boneOfVertex[v] < 0) continue;
+    const double x = bar.mesh.V(v, 0);
+    const int piece = std::min(31, int(x / 1.5));
+    bar.boneOfVertex[v] = x - 1.5 * piece <= 1.0 + 1e-9 ? piece : -1;
+    if (bar.boneOfVertex[v] >= 0) column[piece] = 0;
+  }
+  // Pieces that fall in a joint's tissue hold no vertex; the others become columns 0, 1, ...
+  for (int piece = 0, next = 0; piece < 32; ++piece)
+    if (column[piece] == 0) column[piece] = next++;
+  for (Eigen::Index v = 0; v < bar.boneOfVertex.size(); ++v)
+    if (bar.boneOfVertex[v] >= 0) bar.boneOfVertex[v] = column[bar.boneOfVertex[v]];
+  return bar;
 }
 
 void centres(const test::BoneBar& bar, const Eigen::MatrixXd& W, MatrixX3d& clustered, int sampleSize) {
@@ -96,6 +120,12 @@ int main(int argc, char** argv) {
   centres(bar, W, C, sampleSize);
   skinning(bar, W, C);
   mapping(bar, W);
+  const test::BoneBar many = manyBoneBar(3);
+  const Eigen::MatrixXd manyW = posing::computeBoneWeights(many.mesh.V, many.mesh.T, many.boneOfVertex);
+  std::printf("\n%ld bones, 3 cells per unit: %ld vertices, %ld tets\n\n", long(manyW.cols()), long(many.mesh.V.rows()),
+              long(many.mesh.T.rows()));
+  MatrixX3d manyC;
+  centres(many, manyW, manyC, sampleSize);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   std::printf("\npeak memory %.0f MB\n", double(usage.ru_maxrss) / 1024.0);
