@@ -1,9 +1,11 @@
 // vesalius surface: closed surfaces of labels, one mesh per label.
 #include "common.h"
 
+#include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/shared_label_surfaces.h"
 
 #include <filesystem>
 #include <iostream>
@@ -15,16 +17,36 @@ namespace {
 struct SurfaceOptions {
   std::string labels, table, out, format = ".vtp";
   std::vector<std::string> selected;
-  int smoothIterations = 20;
+  int smoothIterations = -1;  // -1: each method's default
   int targetFaces = 0;
+  bool shared = false;
   CommonOptions common;
 };
+
+// Touching labels share their triangles (SurfaceNets); one mesh per label all the same.
+std::vector<meshing::LabelSurface> sharedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                                  const SurfaceOptions& o, io::Report& report, Progress& progress) {
+  meshing::SharedSurfaceOptions options;
+  if (o.smoothIterations >= 0) options.smoothingIterations = o.smoothIterations;
+  const meshing::SharedLabelSurfaces shared = meshing::sharedLabelSurfaces(map, ids, options, &progress);
+  report.metric("repaired_voxels", shared.repairedVoxels);
+  std::vector<meshing::LabelSurface> surfaces;
+  for (Label id : shared.ids) {
+    const LabelEntry* entry = map.table.find(id);
+    surfaces.push_back({id, entry ? entry->name : std::to_string(id), meshing::surfaceOfLabel(shared, id)});
+  }
+  return surfaces;
+}
 
 void runSurface(const SurfaceOptions& o) {
   io::Report report("surface");
   report.input("labels", o.labels);
-  report.parameter("smooth_iterations", o.smoothIterations);
+  report.parameter("smooth_iterations", o.smoothIterations >= 0 ? o.smoothIterations
+                                        : o.shared ? meshing::SharedSurfaceOptions{}.smoothingIterations
+                                                   : meshing::SurfaceOptions{}.smoothingIterations);
   report.parameter("target_faces", o.targetFaces);
+  report.parameter("shared", o.shared);
+  if (o.shared && o.targetFaces > 0) throw UsageError("surface: --target-faces cannot keep --shared boundaries shared");
   const LabelMap map = io::readLabelMap(o.labels, o.table);
 
   std::vector<Label> ids;
@@ -34,13 +56,13 @@ void runSurface(const SurfaceOptions& o) {
   if (!single) std::filesystem::create_directories(o.out);
 
   meshing::SurfaceOptions options;
-  options.smoothingIterations = o.smoothIterations;
+  if (o.smoothIterations >= 0) options.smoothingIterations = o.smoothIterations;
   options.targetFaces = o.targetFaces;
   Progress progress(o.common.progressStyle());
   std::vector<meshing::LabelSurface> surfaces;
   {
     auto timer = report.time("surfaces");
-    surfaces = meshing::labelSurfaces(map, ids, options, &progress);
+    surfaces = o.shared ? sharedSurfaces(map, ids, o, report, progress) : meshing::labelSurfaces(map, ids, options, &progress);
   }
   for (const meshing::LabelSurface& s : surfaces) {
     const std::string path = single ? o.out : (std::filesystem::path(o.out) / (s.name + o.format)).string();
@@ -63,11 +85,15 @@ void addSurfaceCommand(CLI::App& app) {
   cmd->add_option("--format", o->format, "File type for several labels")
       ->check(CLI::IsMember({".vtp", ".stl", ".obj", ".ply", ".vtk"}))
       ->capture_default_str();
-  cmd->add_option("--smooth", o->smoothIterations, "Windowed-sinc smoothing iterations (0: none, else at least 2)")
-      ->capture_default_str();
+  cmd->add_option("--smooth", o->smoothIterations,
+                  "Smoothing iterations: windowed sinc (default 20; 0: none, else at least 2), or with --shared "
+                  "Taubin pairs (default 16)");
   cmd->add_option("--target-faces", o->targetFaces, "Decimate to about this many triangles (0: keep all)");
+  cmd->add_flag("--shared", o->shared,
+                "Touching labels share their boundary triangles (SurfaceNets; --smooth counts its passes)");
   addCommonOptions(*cmd, o->common);
-  cmd->footer("Example:\n  vesalius surface --labels labels.nii.gz --label liver --out liver.stl");
+  cmd->footer("Examples:\n  vesalius surface --labels labels.nii.gz --label liver --out liver.stl\n"
+              "  vesalius surface --labels seg.nii.gz --label hip_left --label femur_left --shared --out hip/");
   cmd->callback([o] { runSurface(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/segmentation/label_resample.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -23,6 +24,7 @@ struct TetmeshOptions {
   std::vector<std::string> surfaces, selected;
   std::string labels, table, out;
   int body = 0;  // with --labels: label of an outer region, the union of all non-zero voxels (0: none)
+  bool shared = false;  // with --labels: touching labels share their boundaries
   meshing::TetrahedralizeOptions tet;
   CommonOptions common;
 };
@@ -87,6 +89,26 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   return regions;
 }
 
+// --shared: the labels' surfaces share their boundaries where they touch; with --body the rest of the
+// body (holes filled) is one more label around them, touching them wherever they reach its surface.
+meshing::SharedLabelSurfaces sharedRegions(const TetmeshOptions& o, Progress& progress) {
+  LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
+  std::vector<Label> ids;
+  for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
+  if (o.body > 0) {
+    if (std::find(ids.begin(), ids.end(), Label(o.body)) != ids.end())
+      throw UsageError("tetmesh: --body " + std::to_string(o.body) + " is one of the chosen labels");
+    std::vector<bool> chosen(65536, ids.empty());
+    for (Label id : ids) chosen[id] = true;
+    const segmentation::Mask body = segmentation::fillBodyHoles(segmentation::nonZeroMask(map.labels));
+    for (std::size_t v = 0; v < body.values.size(); ++v)
+      if (body.values[v] && (map.labels.values[v] == 0 || !chosen[map.labels.values[v]]))
+        map.labels.values[v] = Label(o.body);
+    if (!ids.empty()) ids.push_back(Label(o.body));
+  }
+  return meshing::sharedLabelSurfaces(map, ids, {}, &progress);
+}
+
 std::string qualityText(const TetQualityReport& r, const io::TetMeshSummary& s) {
   std::ostringstream out;
   out << std::setprecision(4) << "dihedral angles  min " << r.minDihedral << " deg, max " << r.maxDihedral << " deg\n"
@@ -104,6 +126,7 @@ std::string qualityText(const TetQualityReport& r, const io::TetMeshSummary& s) 
 void runTetmesh(const TetmeshOptions& o) {
   if (o.surfaces.empty() == o.labels.empty()) throw UsageError("tetmesh: give --surface or --labels (not both)");
   if (o.body > 0 && o.labels.empty()) throw UsageError("tetmesh: --body needs --labels");
+  if (o.shared && o.labels.empty()) throw UsageError("tetmesh: --shared needs --labels");
   io::Report report("tetmesh");
   for (const std::string& s : o.surfaces) report.input("surface", s);
   if (!o.labels.empty()) report.input("labels", o.labels);
@@ -112,9 +135,17 @@ void runTetmesh(const TetmeshOptions& o) {
   report.parameter("max_volume", o.tet.maxVolume);
   report.parameter("target_tets", o.tet.targetTets);
   Progress progress(o.common.progressStyle());
-  const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, progress);
   TetMesh mesh;
-  {
+  std::size_t regionCount = 0;
+  if (o.shared) {
+    const meshing::SharedLabelSurfaces shared = sharedRegions(o, progress);
+    report.metric("repaired_voxels", shared.repairedVoxels);
+    regionCount = shared.ids.size();
+    auto timer = report.time("tetrahedralize");
+    mesh = meshing::tetrahedralizeLabels(shared, o.tet, o.labels);
+  } else {
+    const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, progress);
+    regionCount = regions.size();
     auto timer = report.time("tetrahedralize");
     mesh = meshing::tetrahedralizeRegions(regions, o.tet);
   }
@@ -126,7 +157,7 @@ void runTetmesh(const TetmeshOptions& o) {
   report.metric("max_radius_edge", q.maxRadiusEdge);
   report.metric("inverted", q.inverted);
   std::cout << o.out << ": " << mesh.V.rows() << " vertices, " << mesh.T.rows() << " tetrahedra in "
-            << regions.size() << " region(s)\n"
+            << regionCount << " region(s)\n"
             << qualityText(q, io::summarize(mesh));
   o.common.finish(report);
 }
@@ -145,6 +176,9 @@ void addTetmeshCommand(CLI::App& app) {
                   "With --labels: add the union of all labels as an outer region with this label; the chosen "
                   "labels are nested in it (a body with its bones)")
       ->check(CLI::Range(1, 65535));
+  cmd->add_flag("--shared", o->shared,
+                "With --labels: touching labels share their boundaries (SurfaceNets), so labels may touch "
+                "each other and, with --body, the body surface");
   cmd->add_option("--out", o->out, "Tet mesh (.vtu .vtk .msh .mesh .ele); tets carry the cell field 'label'")
       ->required();
   cmd->add_option("--quality", o->tet.radiusEdge, "Largest radius-edge ratio (TetGen -q); 0: no refinement")
@@ -160,6 +194,7 @@ void addTetmeshCommand(CLI::App& app) {
       "  vesalius tetmesh --surface body.vtp --surface femur_left.vtp --out body.vtu --target-tets 200000\n"
       "  vesalius tetmesh --labels seg.nii.gz --label hip_left --label hip_right --out hips.vtu\n"
       "  vesalius tetmesh --labels seg.nii.gz --label hip_left --label hip_right --body 1 --out body.vtu\n"
+      "  vesalius tetmesh --labels seg.nii.gz --label sacrum --label vertebrae_L5 --shared --out spine.vtu\n"
       "Surfaces must be closed and must not cross (checked first; exit 3 otherwise).");
   cmd->callback([o] { runTetmesh(*o); });
 }

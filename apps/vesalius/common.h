@@ -36,6 +36,7 @@ Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::
 void addInfoCommand(CLI::App& app);
 void addMarkersCommand(CLI::App& app);
 void addSegmentCommand(CLI::App& app);
+void addLabelsCommand(CLI::App& app);
 void addSurfaceCommand(CLI::App& app);
 void addTetmeshCommand(CLI::App& app);
 void addFitCommand(CLI::App& app);

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
       "Run 'vesalius COMMAND --help' for the options and an example of each command.");
   vesalius::cli::addInfoCommand(app);
   vesalius::cli::addSegmentCommand(app);
+  vesalius::cli::addLabelsCommand(app);
   vesalius::cli::addSurfaceCommand(app);
   vesalius::cli::addTetmeshCommand(app);
   vesalius::cli::addMarkersCommand(app);

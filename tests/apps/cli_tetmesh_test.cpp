@@ -1,6 +1,7 @@
 // `vesalius tetmesh` end to end: a Visible Human muscle, two labels of the test CT and a body with a bone
-// inside become tet meshes with the volume they should have; an open and a self-intersecting surface are
-// refused with exit 3 and one line, writing nothing; `vesalius info` counts self-intersections.
+// inside become tet meshes with the volume they should have; touching labels (--shared) share their
+// boundaries, in surfaces and in one tet mesh; an open and a self-intersecting surface are refused with
+// exit 3 and one line, writing nothing; `vesalius info` counts self-intersections.
 #include "run_command.h"
 
 #include "vesalius/core/mesh_measures.h"
@@ -11,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <filesystem>
 #include <regex>
 
@@ -32,6 +35,20 @@ double printedMinDihedral(const std::string& out) {
   std::smatch m;
   if (!std::regex_search(out, m, std::regex("dihedral angles  min ([0-9.]+) deg"))) return -1;
   return std::stod(m[1]);
+}
+
+// A label map of 2 mm voxels with soft tissue (1) and bone (5), labelled by a function of the voxel index.
+LabelMap softAndBone(const Eigen::Vector3i& size, const std::function<Label(const Eigen::Vector3d&)>& labelAt) {
+  GridGeometry g;
+  g.size = size;
+  g.spacing = {2, 2, 2};
+  LabelMap map{Grid<Label>(g), {}};
+  map.table.add({1, "soft", {200, 100, 100}});
+  map.table.add({5, "bone", {240, 220, 150}});
+  for (int k = 0; k < size.z(); ++k)
+    for (int j = 0; j < size.y(); ++j)
+      for (int i = 0; i < size.x(); ++i) map.labels.at(i, j, k) = labelAt(Eigen::Vector3d(i, j, k));
+  return map;
 }
 
 TEST(CliTetmesh, MuscleSurface) {
@@ -74,23 +91,15 @@ TEST(CliTetmesh, TwoLabelsOfTheCtGiveTwoRegions) {
 // in the soft tissue: --body meshes the union, holes filled, as the outer region with the bone nested
 // inside it (seed 001 §3.2).
 TEST(CliTetmesh, BodyWithABoneInside) {
-  GridGeometry g;
-  g.size = {30, 30, 30};
-  g.spacing = {2, 2, 2};
-  LabelMap map{Grid<Label>(g), {}};
-  map.table.add({1, "soft", {200, 100, 100}});
-  map.table.add({5, "bone", {240, 220, 150}});
-  long soft = 0, bone = 0;
-  for (int k = 0; k < 30; ++k)
-    for (int j = 0; j < 30; ++j)
-      for (int i = 0; i < 30; ++i) {
-        const double r = Eigen::Vector3d(i - 14.5, j - 14.5, k - 14.5).norm();
-        const bool air = Eigen::Vector3d(i - 23.5, j - 14.5, k - 14.5).norm() < 2.0;
-        const Label l = r < 6 ? 5 : (r < 12 && !air ? 1 : 0);
-        map.labels.at(i, j, k) = l;
-        soft += l == 1 || (r < 12 && air);  // the pocket is body
-        bone += l == 5;
-      }
+  long pocketVoxels = 0;  // air inside, which the body keeps
+  const LabelMap map = softAndBone({30, 30, 30}, [&](const Eigen::Vector3d& p) {
+    const double r = (p - Eigen::Vector3d::Constant(14.5)).norm();
+    const bool air = (p - Eigen::Vector3d(23.5, 14.5, 14.5)).norm() < 2.0;
+    pocketVoxels += air && r < 12;
+    return Label(r < 6 ? 5 : (r < 12 && !air ? 1 : 0));
+  });
+  const long bone = std::count(map.labels.values.begin(), map.labels.values.end(), 5);
+  const long soft = std::count(map.labels.values.begin(), map.labels.values.end(), 1) + pocketVoxels;
   const std::string labels = outputPath("ball.nii.gz");
   fs::remove(outputPath("ball.tsv"));
   io::writeLabelMap(labels, map);
@@ -110,6 +119,70 @@ TEST(CliTetmesh, BodyWithABoneInside) {
   // The surfaces keep their voxels' volume (label_surface.h).
   EXPECT_NEAR(boneVolume / (8.0 * double(bone)), 1.0, 0.02);
   EXPECT_NEAR(softVolume / (8.0 * double(soft)), 1.0, 0.02);
+}
+
+// The sacrum and the fifth lumbar vertebra of the test CT touch: with --shared, `surface` gives them the
+// same triangles where they meet, and `tetmesh` one conforming mesh with both volumes kept.
+TEST(CliTetmesh, TouchingLabelsShareTheirBoundary) {
+  const std::string labels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
+  const std::string table = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
+  const std::string folder = (fs::path(VESALIUS_TEST_OUTPUT) / "tetmesh" / "spine").string();
+  fs::remove_all(folder);
+  CommandResult r = runVesalius({"surface", "--labels", labels, "--table", table, "--label", "sacrum", "--label",
+                                 "vertebrae_L5", "--shared", "--out", folder});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const TriMesh sacrum = io::readTriMesh(folder + "/sacrum.vtp"), l5 = io::readTriMesh(folder + "/vertebrae_L5.vtp");
+  std::vector<std::array<double, 3>> points;
+  for (Eigen::Index v = 0; v < sacrum.V.rows(); ++v) points.push_back({sacrum.V(v, 0), sacrum.V(v, 1), sacrum.V(v, 2)});
+  std::sort(points.begin(), points.end());
+  long common = 0;
+  for (Eigen::Index v = 0; v < l5.V.rows(); ++v)
+    common += std::binary_search(points.begin(), points.end(), std::array<double, 3>{l5.V(v, 0), l5.V(v, 1), l5.V(v, 2)});
+  EXPECT_GT(common, 30);  // the joint's vertices, bit for bit
+  for (const TriMesh* m : {&sacrum, &l5}) EXPECT_TRUE(io::summarize(*m).closed);
+
+  const std::string out = outputPath("spine.vtu");
+  r = runVesalius({"tetmesh", "--labels", labels, "--table", table, "--label", "sacrum", "--label", "vertebrae_L5",
+                   "--shared", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // Where the joint meets the outside, the two bones' surfaces and the joint form thin wedges whose
+  // angles no tet inside them can beat (tetrahedralize.h); 8 degrees here.
+  EXPECT_GE(printedMinDihedral(r.out), 6.0) << r.out;
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  EXPECT_EQ(s.inverted, 0);
+  ASSERT_EQ(s.volumePerLabel.size(), 2u);
+  const LabelMap map = io::readLabelMap(labels, table);
+  for (const auto& [name, surface] : {std::pair{"sacrum", &sacrum}, std::pair{"vertebrae_L5", &l5}}) {
+    const Label id = map.table.resolve(name);
+    const double voxels = double(std::count(map.labels.values.begin(), map.labels.values.end(), id)) *
+                          map.labels.geometry.spacing.prod();
+    EXPECT_NEAR(s.volumePerLabel.at(id) / voxels, 1.0, 0.02) << name;
+    EXPECT_NEAR(s.volumePerLabel.at(id) / enclosedVolume(surface->V, surface->F), 1.0, 1e-5) << name;
+  }
+}
+
+// A bone poking out of the body (as where a bone meets the skin or the scan's edge): with --body and
+// --shared the bone keeps its whole volume and the body the rest, the two touching at the surface.
+TEST(CliTetmesh, BoneReachingTheBodySurfaceKeepsItsVolume) {
+  const LabelMap map = softAndBone({34, 30, 30}, [](const Eigen::Vector3d& p) {
+    if ((p - Eigen::Vector3d(24.5, 14.5, 14.5)).norm() < 6) return Label(5);
+    return Label((p - Eigen::Vector3d::Constant(14.5)).norm() < 12 ? 1 : 0);
+  });
+  const long bone = std::count(map.labels.values.begin(), map.labels.values.end(), 5);
+  const long soft = std::count(map.labels.values.begin(), map.labels.values.end(), 1);
+  const std::string labels = outputPath("poking.nii.gz");
+  fs::remove(outputPath("poking.tsv"));
+  io::writeLabelMap(labels, map);
+  const std::string out = outputPath("poking.vtu");
+  const CommandResult r =
+      runVesalius({"tetmesh", "--labels", labels, "--label", "bone", "--body", "1", "--shared", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  EXPECT_EQ(s.inverted, 0);
+  ASSERT_EQ(s.volumePerLabel.size(), 2u);
+  EXPECT_NEAR(s.volumePerLabel.at(5) / (8.0 * double(bone)), 1.0, 0.02);
+  EXPECT_NEAR(s.volumePerLabel.at(1) / (8.0 * double(soft)), 1.0, 0.02);
+  EXPECT_EQ(runVesalius({"tetmesh", "--surface", labels, "--shared", "--out", out}).exitCode, 2);
 }
 
 // A map longer than seed 001's cap (250 voxels along L) is resampled before meshing and keeps its volume.

@@ -2,11 +2,13 @@
 // tissue classes: wall time and peak memory. labelSurfaces (one scan for all label boxes, labels in
 // parallel) is timed against the baseline it replaced in the same run: labelSurface per label, serially,
 // each call scanning the whole map. Each workload runs in its own child process so its peak resident
-// memory (getrusage via wait4) is its own. Prints markdown table rows.
+// memory (getrusage via wait4) is its own. The shared surfaces of all labels at once (SurfaceNets) are
+// timed against labelSurfaces in the same child. Prints markdown table rows.
 //
 //   build/tests/bench/bench_surfaces
 #include "vesalius/io/image_io.h"
 #include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/shared_label_surfaces.h"
 #include "vesalius/segmentation/ct_tissues.h"
 
 #include "bench_support.h"
@@ -57,6 +59,18 @@ void benchSurfaces() {
               baseline / method);
 }
 
+void benchSharedSurfaces() {
+  const LabelMap map =
+      io::readLabelMap(kDir + "example_seg_total_v1_for_example_ct.nii.gz", kDir + "labels_total_v1.tsv");
+  std::vector<meshing::LabelSurface> separate;
+  meshing::SharedLabelSurfaces shared;
+  const double baseline = seconds([&] { separate = meshing::labelSurfaces(map, {}); });
+  const double method = seconds([&] { shared = meshing::sharedLabelSurfaces(map, {}); });
+  std::printf("| shared surfaces of the same %zu labels, %ld triangles | labelSurfaces (each on its own): %.2f s | "
+              "sharedLabelSurfaces: %.2f s (%.2fx) |",
+              shared.ids.size(), long(shared.F.rows()), baseline, method, baseline / method);
+}
+
 void benchSegmentation() {
   const Image ct = io::readScan(kDir + "example_ct.nii.gz");
   LabelMap tissues;
@@ -73,6 +87,7 @@ int main() {
   std::puts("| workload | baseline | method | peak memory |\n|---|---|---|---|");
   // The parent never starts TBB's threads, so forking is safe.
   bench::inChild(benchSurfaces);
+  bench::inChild(benchSharedSurfaces);
   bench::inChild(benchSegmentation);
   return 0;
 }

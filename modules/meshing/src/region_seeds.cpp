@@ -52,8 +52,10 @@ double rayHit(const TriMesh& m, Eigen::Index f, const Vec3& o, const Vec3& d) {
 }
 
 // The best inward-ray midpoint over the largest triangles of one part. "Inward" is against the triangle's
-// normal, towards the material (side -1), or with it (side +1): into the cavity an inner shell bounds.
-RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<int> triangles, double side) {
+// normal, towards the material (side(f) = -1), or with it (+1): into the cavity an inner shell bounds,
+// or into the label a partition's triangle faces.
+template <class Side>
+RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<int> triangles, Side side) {
   auto area = [&](int f) { return (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).norm(); };
   const std::size_t tries = std::min<std::size_t>(8, triangles.size());
   std::partial_sort(triangles.begin(), triangles.begin() + long(tries), triangles.end(),
@@ -62,7 +64,7 @@ RegionSeed seedOfPart(const TriMesh& all, const TriangleTree& tree, std::vector<
   for (std::size_t i = 0; i < tries; ++i) {
     const int f = triangles[i];
     const Vec3 o = (corner(all, f, 0) + corner(all, f, 1) + corner(all, f, 2)) / 3.0;
-    const Vec3 d = side * (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).normalized();
+    const Vec3 d = side(f) * (corner(all, f, 1) - corner(all, f, 0)).cross(corner(all, f, 2) - corner(all, f, 0)).normalized();
     double hit = std::numeric_limits<double>::infinity();
     for (Eigen::Index g = 0; g < all.F.rows(); ++g)
       if (g != f) hit = std::min(hit, rayHit(all, g, o, d));
@@ -110,7 +112,7 @@ std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& 
   std::vector<RegionSeed> seeds;
   for (int p = 0; p < count; ++p) {
     const int surface = owner[triangles[p].front()];
-    RegionSeed seed = seedOfPart(all, tree, triangles[p], -1.0);
+    RegionSeed seed = seedOfPart(all, tree, triangles[p], [](int) { return -1.0; });
     seed.region = surface;
     if (seed.clearance <= 0.0)
       throw NumericalFailure("tetrahedralize: no point found inside a part of surface " +
@@ -119,9 +121,35 @@ std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& 
     // The cavity of an inner shell (a hollow in a bone) belongs to the surface around the shell's
     // surface (the body), if any; otherwise it stays empty.
     if (enclosedVolume(all.V, all.F(triangles[p], Eigen::all)) >= 0.0) continue;
-    RegionSeed cavity = seedOfPart(all, tree, triangles[p], 1.0);
+    RegionSeed cavity = seedOfPart(all, tree, triangles[p], [](int) { return 1.0; });
     cavity.region = cavity.clearance > 0.0 ? enclosingSurface(all, facesOf, surface, cavity.point) : -1;
     if (cavity.region >= 0) seeds.push_back(cavity);
+  }
+  return seeds;
+}
+
+std::vector<RegionSeed> partitionSeeds(const TriMesh& all, const Eigen::MatrixX2i& sides, const std::vector<int>& labels) {
+  const TriangleTree tree(all.V, all.F);
+  std::vector<RegionSeed> seeds;
+  for (std::size_t region = 0; region < labels.size(); ++region) {
+    const int label = labels[region];
+    TriMesh own;
+    own.V = all.V;
+    std::vector<int> faces;
+    for (Eigen::Index f = 0; f < all.F.rows(); ++f)
+      if (sides(f, 0) == label || sides(f, 1) == label) faces.push_back(int(f));
+    own.F = all.F(faces, Eigen::all);
+    int count = 0;
+    const std::vector<int> part = triangleParts(own, count);
+    std::vector<std::vector<int>> triangles(static_cast<std::size_t>(count));
+    for (std::size_t i = 0; i < faces.size(); ++i) triangles[std::size_t(part[i])].push_back(faces[i]);
+    for (const std::vector<int>& t : triangles) {
+      RegionSeed seed = seedOfPart(all, tree, t, [&](int f) { return sides(f, 0) == label ? -1.0 : 1.0; });
+      if (seed.clearance <= 0.0)
+        throw NumericalFailure("tetrahedralize: no point found inside a part of label " + std::to_string(label));
+      seed.region = int(region);
+      seeds.push_back(seed);
+    }
   }
   return seeds;
 }

@@ -20,4 +20,9 @@ struct RegionSeed {
 // seed inside its cavity, for the smallest other surface holding that point, if there is one.
 std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner);
 
+// A partition into labelled regions (shared_label_surfaces.h): `all` holds each triangle once, `sides`
+// (#F by 2) the labels its normal points out of and into. One seed per connected part of each label's
+// triangles, with region = the label's index in `labels`; throws NumericalFailure as above.
+std::vector<RegionSeed> partitionSeeds(const TriMesh& all, const Eigen::MatrixX2i& sides, const std::vector<int>& labels);
+
 }  // namespace vesalius::meshing

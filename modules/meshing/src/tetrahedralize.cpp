@@ -89,13 +89,13 @@ std::string switches(const TetrahedralizeOptions& o, double maxVolume) {
   return s.str();
 }
 
-void fillInput(const Combined& c, const std::vector<RegionSeed>& seeds, tetgenio& in) {
+void fillInput(const TriMesh& all, const std::vector<RegionSeed>& seeds, tetgenio& in) {
   in.firstnumber = 0;
-  in.numberofpoints = int(c.all.V.rows());
+  in.numberofpoints = int(all.V.rows());
   in.pointlist = new REAL[3 * std::size_t(in.numberofpoints)];
   for (int v = 0; v < in.numberofpoints; ++v)
-    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = c.all.V(v, k);
-  in.numberoffacets = int(c.all.F.rows());
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = all.V(v, k);
+  in.numberoffacets = int(all.F.rows());
   in.facetlist = new tetgenio::facet[std::size_t(in.numberoffacets)];
   for (int f = 0; f < in.numberoffacets; ++f) {
     tetgenio::facet& facet = in.facetlist[f];
@@ -104,7 +104,7 @@ void fillInput(const Combined& c, const std::vector<RegionSeed>& seeds, tetgenio
     facet.numberofholes = 0;
     facet.holelist = nullptr;
     facet.polygonlist[0].numberofvertices = 3;
-    facet.polygonlist[0].vertexlist = new int[3]{c.all.F(f, 0), c.all.F(f, 1), c.all.F(f, 2)};
+    facet.polygonlist[0].vertexlist = new int[3]{all.F(f, 0), all.F(f, 1), all.F(f, 2)};
   }
   in.numberofregions = int(seeds.size());
   in.regionlist = new REAL[5 * seeds.size()];
@@ -115,14 +115,15 @@ void fillInput(const Combined& c, const std::vector<RegionSeed>& seeds, tetgenio
   }
 }
 
-// TetGen's tets of the seeded regions, positively oriented, with only the vertices they use.
-TetMesh convertOutput(const tetgenio& out, const std::vector<RegionSurface>& regions) {
+// TetGen's tets of the seeded regions, positively oriented, with only the vertices they use; region r's
+// tets get the label labels[r].
+TetMesh convertOutput(const tetgenio& out, const std::vector<int>& labels) {
   std::vector<int> keep, label;
   for (int t = 0; t < out.numberoftetrahedra; ++t) {
     const long region = std::lround(out.tetrahedronattributelist[t * out.numberoftetrahedronattributes]) - 1;
-    if (region < 0 || region >= long(regions.size())) continue;
+    if (region < 0 || region >= long(labels.size())) continue;
     keep.push_back(t);
-    label.push_back(regions[std::size_t(region)].label);
+    label.push_back(labels[std::size_t(region)]);
   }
   if (keep.empty()) throw NumericalFailure("TetGen produced no tetrahedra inside the surfaces");
   std::vector<int> index(std::size_t(out.numberofpoints), -1);
@@ -145,23 +146,49 @@ TetMesh convertOutput(const tetgenio& out, const std::vector<RegionSurface>& reg
   return mesh;
 }
 
-TetMesh runTetgen(const Combined& c, const std::vector<RegionSeed>& seeds, const std::vector<RegionSurface>& regions,
+TetMesh runTetgen(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
                   const std::string& flags) {
   tetgenio in, out;
-  fillInput(c, seeds, in);
+  fillInput(all, seeds, in);
   std::string buffer = flags;
   try {
     ::tetrahedralize(buffer.data(), &in, &out);
   } catch (int code) {  // the library's own terminatetetgen, should ours not be the one linked
     throw NumericalFailure("TetGen failed: " + tetgenErrorText(code));
   }
-  return convertOutput(out, regions);
+  return convertOutput(out, labels);
 }
 
-TetMesh mesh(const Combined& c, const std::vector<RegionSeed>& seeds, const std::vector<RegionSurface>& regions,
+TetMesh mesh(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
              const TetrahedralizeOptions& options, double maxVolume) {
-  TetMesh result = runTetgen(c, seeds, regions, switches(options, maxVolume));
+  TetMesh result = runTetgen(all, seeds, labels, switches(options, maxVolume));
   if (options.radiusEdge > 0) improveDihedrals(result, options.minDihedral, maxVolume);
+  return result;
+}
+
+void checkOptions(const TetrahedralizeOptions& options) {
+  if (options.radiusEdge < 0 || options.minDihedral < 0 || options.minDihedral >= 70 || options.maxVolume < 0 ||
+      options.targetTets < 0 || options.optimizationLevel < 0 || options.optimizationLevel > 9 ||
+      options.maxDihedral <= 70 || options.maxDihedral >= 180)
+    throw UsageError("tetrahedralize: radius-edge, volume and tet count must not be negative, the minimum "
+                     "dihedral angle must be below 70 degrees, the maximum between 70 and 180, the "
+                     "optimization level 0 to 9");
+}
+
+// With options.targetTets, the volume bound is searched for; `volume` is what the surfaces enclose.
+TetMesh meshToTarget(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
+                     const TetrahedralizeOptions& options, double volume) {
+  if (options.targetTets == 0) return mesh(all, seeds, labels, options, options.maxVolume);
+  // Tet count goes about as 1 / volume bound: start from a guess (Delaunay refinement leaves tets well
+  // below the bound on average) and rescale by the count obtained.
+  double bound = 3.0 * volume / double(options.targetTets);
+  TetMesh result;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    result = mesh(all, seeds, labels, options, bound);
+    const double ratio = double(result.T.rows()) / double(options.targetTets);
+    if (std::abs(ratio - 1.0) <= 0.15) break;
+    bound *= ratio;
+  }
   return result;
 }
 
@@ -173,28 +200,35 @@ void checkTetgenInput(const std::vector<RegionSurface>& regions) {
 }
 
 TetMesh tetrahedralizeRegions(const std::vector<RegionSurface>& regions, const TetrahedralizeOptions& options) {
-  if (options.radiusEdge < 0 || options.minDihedral < 0 || options.minDihedral >= 70 || options.maxVolume < 0 ||
-      options.targetTets < 0 || options.optimizationLevel < 0 || options.optimizationLevel > 9 ||
-      options.maxDihedral <= 70 || options.maxDihedral >= 180)
-    throw UsageError("tetrahedralize: radius-edge, volume and tet count must not be negative, the minimum "
-                     "dihedral angle must be below 70 degrees, the maximum between 70 and 180, the "
-                     "optimization level 0 to 9");
+  checkOptions(options);
   checkEach(regions);
   const Combined c = combine(regions);
   checkCrossings(regions, c);
-  const std::vector<RegionSeed> seeds = regionSeeds(c.all, c.owner);
-  if (options.targetTets == 0) return mesh(c, seeds, regions, options, options.maxVolume);
-  // Tet count goes about as 1 / volume bound: start from a guess (Delaunay refinement leaves tets well
-  // below the bound on average) and rescale by the count obtained.
-  double bound = 3.0 * enclosedVolume(c.all.V, c.all.F) / double(options.targetTets);
-  TetMesh result;
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    result = mesh(c, seeds, regions, options, bound);
-    const double ratio = double(result.T.rows()) / double(options.targetTets);
-    if (std::abs(ratio - 1.0) <= 0.15) break;
-    bound *= ratio;
+  std::vector<int> labels;
+  for (const RegionSurface& r : regions) labels.push_back(r.label);
+  return meshToTarget(c.all, regionSeeds(c.all, c.owner), labels, options, enclosedVolume(c.all.V, c.all.F));
+}
+
+TetMesh tetrahedralizeLabels(const SharedLabelSurfaces& surfaces, const TetrahedralizeOptions& options,
+                             const std::string& source) {
+  checkOptions(options);
+  double volume = 0.0;
+  std::vector<int> labels;
+  for (Label id : surfaces.ids) {
+    const std::string name = source + " label " + std::to_string(id);
+    const TriMesh own = surfaceOfLabel(surfaces, id);
+    const EdgeCounts edges = countEdges(own.F);
+    if (edges.boundary > 0 || edges.nonManifold > 0)
+      throw BadInput(name, "the label's surface is not a closed 2-manifold");
+    volume += enclosedVolume(own.V, own.F);
+    labels.push_back(int(id));
   }
-  return result;
+  TriMesh all;
+  all.V = surfaces.V;
+  all.F = surfaces.F;
+  if (const auto pairs = selfIntersections(all.V, all.F); !pairs.empty())
+    throw BadInput(source, std::to_string(pairs.size()) + " pairs of triangles of the shared surfaces cross");
+  return meshToTarget(all, partitionSeeds(all, surfaces.sides, labels), labels, options, volume);
 }
 
 TetMesh tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options, const std::string& source) {

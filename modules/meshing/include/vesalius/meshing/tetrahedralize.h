@@ -14,12 +14,17 @@
 // of an inward-facing inner shell (a hollow in a bone) belongs to the smallest other surface around it
 // (the body); cavities no other surface holds are removed.
 //
+// Labels that touch (shared_label_surfaces.h) give one conforming mesh too: each shared triangle goes to
+// TetGen once, and each connected part of a label's surface gets a seed by the same inward ray, cast into
+// the label's side of one of its triangles.
+//
 // Input is checked before TetGen sees it, because TetGen aborts or loops on bad surfaces: every surface
 // must be a closed 2-manifold, and no triangle may cross another of any surface (self_intersections.h).
 // Violations are BadInput naming the surface; TetGen's own failures become NumericalFailure.
 #pragma once
 
 #include "vesalius/core/mesh.h"
+#include "vesalius/meshing/shared_label_surfaces.h"
 
 #include <string>
 #include <vector>
@@ -45,6 +50,12 @@ struct RegionSurface {
 // One region per surface. Output: V #V by 3 (only vertices of kept tets), T #T by 4
 // positively oriented, tet attribute kLabel = the label of the region holding the tet.
 TetMesh tetrahedralizeRegions(const std::vector<RegionSurface>& regions, const TetrahedralizeOptions& options = {});
+
+// The labels of `surfaces` as regions: tet attribute kLabel = the label of the region holding the tet;
+// background (0) is left empty, cavities of it included. Throws BadInput naming `source` if a label's
+// surface is not a closed 2-manifold or triangles cross.
+TetMesh tetrahedralizeLabels(const SharedLabelSurfaces& surfaces, const TetrahedralizeOptions& options = {},
+                             const std::string& source = "labels");
 
 // One closed surface (possibly of several parts); every tet gets label 1, or the surface's face label
 // kLabel when all its faces carry the same one. `source` names it in error messages.
