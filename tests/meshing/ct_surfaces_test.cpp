@@ -72,6 +72,20 @@ TEST_F(DemoCt, BoneSurfaceIsClosedWithTheVoxelVolume) {
   EXPECT_NEAR(rawRatio, 1.0, 0.03);
 }
 
+// Bone in many thin pieces decimated to 30k triangles: quadric decimation tears it (open and
+// non-manifold edges), so the topology-keeping fallback must give a closed surface.
+TEST_F(DemoCt, DecimatedBoneStaysClosed) {
+  meshing::SurfaceOptions options;
+  options.targetFaces = 30000;
+  const io::TriMeshSummary s = io::summarize(meshing::labelSurface(*tissues_, segmentation::kCtBone, options));
+  EXPECT_LE(s.triangles, 33000);
+  EXPECT_EQ(s.boundaryEdges, 0);
+  EXPECT_EQ(s.nonManifoldEdges, 0);
+  EXPECT_EQ(s.selfIntersections, 0);
+  ASSERT_TRUE(s.volume.has_value());
+  EXPECT_NEAR(*s.volume / voxelVolume(*tissues_, segmentation::kCtBone), 1.0, 0.02);
+}
+
 TEST_F(DemoCt, SurfacesLieInsideTheScanInWorldSpace) {
   const TriMesh mesh = meshing::labelSurface(*tissues_, segmentation::kCtSkin);
   const GridGeometry& g = ct_->geometry;

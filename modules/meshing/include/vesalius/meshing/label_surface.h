@@ -7,7 +7,8 @@
 // smoothed with vtkWindowedSincPolyDataFilter (Taubin, Zhang, Golub, "Optimal surface smoothing as filter
 // design", ECCV 1996; coordinates normalised, feature edges and boundary not treated specially), optionally
 // decimated to a target face count by vtkQuadricDecimation (Garland and Heckbert 1997) with volume
-// preservation, oriented outward (the enclosed signed volume is made positive), and finally moved along
+// preservation (or, where that tears a label of many thin pieces open, by vtkDecimatePro keeping the
+// topology, which may stop above the target), oriented outward (the enclosed signed volume is made positive), and finally moved along
 // its vertex normals by the one uniform distance that makes it enclose the label's voxel volume.
 // That last step exists because marching cubes cuts the corners of every voxel and smoothing shrinks
 // thin parts: on the demo CT's bone (3 mm voxels) the surface would otherwise enclose 2.6% less than its
