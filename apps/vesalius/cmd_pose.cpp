@@ -1,9 +1,13 @@
 // vesalius pose: an anatomy directory (`vesalius rig`) put into the poses of a motion or of joint angles
-// (seed 001 §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders.
+// (seed 001 §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders,
+// and the quality of every pose (issue 6): inverted tets, posed/rest tet volumes, the skin's volume change and
+// the tissue vertices that leave their tet.
 #include "anatomy_rig.h"
 #include "common.h"
 
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/body_axes.h"
@@ -20,10 +24,15 @@
 #include "vesalius/posing/skeleton_pose.h"
 #include "vesalius/viz/surface_render.h"
 
+#include <Eigen/LU>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 namespace fs = std::filesystem;
@@ -34,8 +43,8 @@ namespace {
 
 struct PoseOptions {
   std::string anatomy, motion, map, frames, angles, method = "lbs", out, volume, labels, pngDir;
-  int frame = 0;
-  bool motionLps = false;
+  int frame = 0, every = 1;
+  bool everyGiven = false, qualityOnly = false, motionLps = false;
   CommonOptions common;
 };
 
@@ -75,14 +84,153 @@ Posed skinTets(const AnatomyRig& rig, const std::vector<Eigen::Isometry3d>& worl
   return {posing::corotationalFem(V, rig.tets.T, rig.boneOfVertex(), bones).V, world};
 }
 
+// One pose to put the rig in: posed world transforms of its skeleton, the output folder's name (empty: --out
+// itself) and the motion frame (-1 for --angles).
+struct PoseSpec {
+  std::vector<Eigen::Isometry3d> world;
+  std::string name;
+  int frame = -1;
+};
+
+// The poses asked for: one of --angles, or frames A, A+K, ... <= B of --motion retargeted to the rig.
+std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io::Report& report) {
+  if (!o.angles.empty())
+    return {{posing::poseFromJointAngles(rig.skeleton, posing::parseJointAngles(o.angles)), "", -1}};
+  report.input("motion", o.motion);
+  const Motion motion = io::readBvh(o.motion);
+  posing::RetargetOptions retarget;
+  if (!o.motionLps) retarget.sourceAxes = io::yUpToLps();
+  const posing::Retargeter retargeter(motion.skeleton, rig.skeleton, jointMap(o, motion.skeleton, rig), retarget,
+                                      o.map.empty() ? "default joint map" : o.map);
+  const auto [first, last] = frameRange(o, motion.frameCount());
+  std::vector<PoseSpec> poses;
+  for (int f = first; f <= last; f += o.every) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d", f);
+    poses.push_back({retargeter.pose(motion.worldPose(f)), first == last ? "" : name, f});
+  }
+  return poses;
+}
+
+// What posing must not break (issue 6), for one pose.
+struct PoseQuality {
+  long inverted = 0;             // posed tets with signed volume <= 0 (inverted or flat)
+  double minVolumeRatio = 0;     // smallest posed / rest tet volume
+  double skinVolumeChangePct = std::numeric_limits<double>::quiet_NaN();  // posed / rest skin volume - 1, %
+  long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
+};
+
+// Measures PoseQuality against the rest rig, whose tet volumes, skin volume and inside vertices it keeps.
+// A vertex is inside when its rest barycentric weights are all >= -1e-9 (TetLocator::locate's tolerance);
+// it has left when its posed position, re-expressed in its posed tet, has a weight below -1e-9 or none
+// (a flat tet). The carrying (TetEmbedding::apply) keeps the weights under any invertible tet map, inverted
+// ones included, so this checks the carried meshes end to end and catches flat tets.
+class QualityMeter {
+ public:
+  static constexpr double kTolerance = 1e-9;
+
+  QualityMeter(const AnatomyRig& rig, const std::vector<TriMesh>& meshes, const std::vector<TetEmbedding>& embeddings)
+      : T_(rig.tets.T), restVolumes_(tetVolumes(rig.tets.V, rig.tets.T)), embeddings_(embeddings) {
+    for (std::size_t m = 0; m < meshes.size(); ++m)
+      if (fs::path(rig.meshes[m]).stem() == "skin") {
+        skin_ = int(m);
+        skinF_ = meshes[m].F;
+        restSkinVolume_ = enclosedVolume(meshes[m].V, meshes[m].F);
+      }
+    for (const TetEmbedding& e : embeddings)
+      inside_ += (e.barycentric.rowwise().minCoeff().array() >= -kTolerance).count();
+  }
+
+  long insideAtRest() const { return inside_; }  // tissue vertices inside the rest tets, over all meshes
+
+  // posedTets: #V by 3 posed tet vertices; carried: per mesh, its #P by 3 posed vertices.
+  PoseQuality operator()(const MatrixX3d& posedTets, const std::vector<MatrixX3d>& carried) const {
+    PoseQuality q;
+    const Eigen::ArrayXd volumes = tetVolumes(posedTets, T_).array();
+    q.inverted = (volumes <= 0).count();
+    q.minVolumeRatio = (volumes / restVolumes_.array()).minCoeff();
+    if (skin_ >= 0) q.skinVolumeChangePct = 100 * (enclosedVolume(carried[skin_], skinF_) / restSkinVolume_ - 1);
+    for (std::size_t m = 0; m < carried.size(); ++m)
+      q.leftOutside += leftOutside(posedTets, embeddings_[m], carried[m]);
+    return q;
+  }
+
+ private:
+  static long leftOutside(const MatrixX3d& posedTets, const TetEmbedding& e, const MatrixX3d& carried) {
+    long count = 0;
+    for (Eigen::Index p = 0; p < carried.rows(); ++p) {
+      if (e.barycentric.row(p).minCoeff() < -kTolerance) continue;  // outside at rest: carried by its nearest tet
+      const Eigen::RowVector3d a = posedTets.row(e.corners(p, 0));
+      Eigen::Matrix3d edges;
+      for (int k = 0; k < 3; ++k) edges.col(k) = (posedTets.row(e.corners(p, k + 1)) - a).transpose();
+      const Eigen::Vector3d w = edges.inverse() * (carried.row(p) - a).transpose();
+      const Eigen::Vector4d weights(1 - w.sum(), w[0], w[1], w[2]);
+      if (!(weights.minCoeff<Eigen::PropagateNaN>() >= -kTolerance)) ++count;  // NaN (a flat tet) counts as left
+    }
+    return count;
+  }
+
+  MatrixX4i T_;
+  Eigen::VectorXd restVolumes_;
+  const std::vector<TetEmbedding>& embeddings_;
+  int skin_ = -1;
+  MatrixX3i skinF_;
+  double restSkinVolume_ = 0;
+  long inside_ = 0;
+};
+
+// quality.tsv: one row per pose; a frame of "-" is an --angles pose.
+void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& poses,
+                       const std::vector<PoseQuality>& quality, const std::string& method,
+                       const WriteOptions& options) {
+  writeAtomically(path, options, [&](const std::string& temporary) {
+    std::ofstream out(temporary);
+    out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside\n";
+    out.precision(9);
+    for (std::size_t p = 0; p < poses.size(); ++p) {
+      const PoseQuality& q = quality[p];
+      out << (poses[p].frame < 0 ? "-" : std::to_string(poses[p].frame)) << '\t' << method << '\t' << q.inverted
+          << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\n';
+    }
+    if (!out) throw BadInput(temporary, "cannot write");
+  });
+}
+
+// Prints the worst value of each measure over all poses (with its frame) and puts it into the report.
+void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
+                        long insideAtRest, io::Report& report) {
+  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0;
+  for (std::size_t p = 0; p < quality.size(); ++p) {
+    if (quality[p].inverted > quality[inverted].inverted) inverted = p;
+    if (quality[p].minVolumeRatio < quality[ratio].minVolumeRatio) ratio = p;
+    if (std::abs(quality[p].skinVolumeChangePct) > std::abs(quality[skin].skinVolumeChangePct)) skin = p;
+    if (quality[p].leftOutside > quality[left].leftOutside) left = p;
+  }
+  const auto frame = [&](std::size_t p) {
+    return poses[p].frame < 0 ? std::string("-") : std::to_string(poses[p].frame);
+  };
+  report.metric("max_inverted_tets", quality[inverted].inverted);
+  report.metric("min_tet_volume_ratio", quality[ratio].minVolumeRatio);
+  report.metric("worst_skin_volume_change_pct", quality[skin].skinVolumeChangePct);
+  report.metric("max_tissue_vertices_left_outside", quality[left].leftOutside);
+  report.metric("tissue_vertices_inside_at_rest", insideAtRest);
+  std::cout << "worst over " << poses.size() << " pose(s): " << quality[inverted].inverted
+            << " inverted or flat tets (frame " << frame(inverted) << "), smallest posed/rest tet volume "
+            << quality[ratio].minVolumeRatio << " (frame " << frame(ratio) << "), skin volume change "
+            << quality[skin].skinVolumeChangePct << " % (frame " << frame(skin) << "), "
+            << quality[left].leftOutside << " of " << insideAtRest
+            << " tissue vertices inside at rest left outside (frame " << frame(left) << ")\n";
+}
+
 // The rest-pose volumes to re-pose, read once for all poses.
 struct Volumes {
   std::optional<Image> scan;
   std::optional<LabelMap> labels;
 };
 
+// carried: per mesh, its #P by 3 posed vertices.
 void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<TriMesh>& meshes,
-               const std::vector<TetEmbedding>& embeddings, const Volumes& volumes, const Posed& posed,
+               const std::vector<MatrixX3d>& carried, const Volumes& volumes, const Posed& posed,
                const std::string& dir, const std::string& png) {
   const io::MeshWriteOptions write{o.common.writeOptions()};
   fs::create_directories(dir);
@@ -92,7 +240,7 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
   io::writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, posed.world), o.common.writeOptions());
   std::vector<TriMesh> out = meshes;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
-    out[m].V = embeddings[m].apply(posed.tets);
+    out[m].V = carried[m];
     io::writeTriMesh(dir + "/" + fs::path(rig.meshes[m]).filename().string(), out[m], write);
   }
   if (volumes.scan)
@@ -112,12 +260,20 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
   }
 }
 
-void runPose(const PoseOptions& o) {
+void checkOptions(const PoseOptions& o) {
   if (o.method != "lbs" && o.method != "dqs" && o.method != "cor" && o.method != "fem")
     throw UsageError("pose: --method must be lbs, dqs, cor or fem");
   if (o.motion.empty() == o.angles.empty()) throw UsageError("pose: give --motion or --angles (not both)");
+  if (o.every < 1) throw UsageError("pose: --every must be 1 or more");
+  if (o.everyGiven && o.frames.empty()) throw UsageError("pose: --every needs --frames A:B");
+  if (o.qualityOnly && (!o.pngDir.empty() || !o.volume.empty() || !o.labels.empty()))
+    throw UsageError("pose: --quality-only writes no poses, so no --png-dir, --volume or --labels");
   if (!o.pngDir.empty() && !viz::canRenderSurfaces())
     throw UsageError("pose: --png-dir needs a display (run under xvfb-run -a)");
+}
+
+void runPose(const PoseOptions& o) {
+  checkOptions(o);
   io::Report report("pose");
   report.input("anatomy", o.anatomy);
   report.parameter("method", o.method);
@@ -131,47 +287,40 @@ void runPose(const PoseOptions& o) {
       embeddings.push_back(embedInTets(rig.tets.V, rig.tets.T, meshes.back().V));
     }
   }
-  // Each pose is a list of posed world transforms of the rig's skeleton and the name of its output.
-  std::vector<std::pair<std::vector<Eigen::Isometry3d>, std::string>> poses;
-  if (!o.angles.empty()) {
-    poses.emplace_back(posing::poseFromJointAngles(rig.skeleton, posing::parseJointAngles(o.angles)), "");
-  } else {
-    report.input("motion", o.motion);
-    const Motion motion = io::readBvh(o.motion);
-    posing::RetargetOptions retarget;
-    if (!o.motionLps) retarget.sourceAxes = io::yUpToLps();
-    const posing::Retargeter retargeter(motion.skeleton, rig.skeleton, jointMap(o, motion.skeleton, rig), retarget,
-                                        o.map.empty() ? "default joint map" : o.map);
-    const auto [first, last] = frameRange(o, motion.frameCount());
-    for (int f = first; f <= last; ++f) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%05d", f);
-      poses.emplace_back(retargeter.pose(motion.worldPose(f)), first == last ? "" : name);
-    }
-  }
+  const std::vector<PoseSpec> poses = readPoses(o, rig, report);
   Volumes volumes;
   if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
+  const QualityMeter meter(rig, meshes, embeddings);
+  std::vector<PoseQuality> quality;
   Progress progress(o.common.progressStyle());
   progress.begin("pose", o.method);
   double skinningSeconds = 0;
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto start = std::chrono::steady_clock::now();
-    const Posed posed = skinTets(rig, poses[p].first, o.method);
+    const Posed posed = skinTets(rig, poses[p].world, o.method);
     skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const std::string& name = poses[p].second;
-    const std::string dir = name.empty() ? o.out : o.out + "/" + name;
-    const std::string png = o.pngDir.empty() ? "" : o.pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
-    if (!o.pngDir.empty()) fs::create_directories(o.pngDir);
-    writePose(o, rig, meshes, embeddings, volumes, posed, dir, png);
+    std::vector<MatrixX3d> carried;
+    for (const TetEmbedding& e : embeddings) carried.push_back(e.apply(posed.tets));
+    quality.push_back(meter(posed.tets, carried));
+    if (!o.qualityOnly) {
+      const std::string& name = poses[p].name;
+      const std::string dir = name.empty() ? o.out : o.out + "/" + name;
+      const std::string png = o.pngDir.empty() ? "" : o.pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
+      if (!o.pngDir.empty()) fs::create_directories(o.pngDir);
+      writePose(o, rig, meshes, carried, volumes, posed, dir, png);
+    }
     progress.update(double(p + 1) / poses.size());
   }
   progress.end();
+  fs::create_directories(o.out);
+  writeQualityTable(o.out + "/quality.tsv", poses, quality, o.method, o.common.writeOptions());
   report.output("poses", o.out);
   report.metric("poses", poses.size());
   report.metric("skinning_seconds_per_pose", skinningSeconds / poses.size());
   std::cout << o.out << ": " << poses.size() << " pose(s) by " << o.method << ", " << meshes.size()
             << " mesh(es) each; skinning " << 1000 * skinningSeconds / poses.size() << " ms per pose\n";
+  reportWorstQuality(poses, quality, meter.insideAtRest(), report);
   o.common.finish(report);
 }
 
@@ -184,6 +333,8 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--motion", o->motion, "BVH motion (CMU or MakeHuman names; see --map)");
   cmd->add_option("--frame", o->frame, "Frame of the motion to pose (0-based)")->capture_default_str();
   cmd->add_option("--frames", o->frames, "Frames A:B (inclusive), one output folder frame_NNNNN each");
+  CLI::Option* every =
+      cmd->add_option("--every", o->every, "With --frames: every K-th frame from A")->capture_default_str();
   cmd->add_option("--map", o->map, "Joint map file: 'motion-joint rig-joint' per line (default: CMU names)");
   cmd->add_flag("--motion-lps", o->motionLps, "The motion is in mm LPS (a skeleton.bvh of vesalius), not +Y up");
   cmd->add_option("--angles", o->angles, "A pose from joint angles instead: 'joint=x,y,z; ...' degrees about the "
@@ -193,14 +344,20 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--volume", o->volume, "A scan in the rig's space to re-pose (trilinear)");
   cmd->add_option("--labels", o->labels, "A label map in the rig's space to re-pose (nearest neighbour)");
   cmd->add_option("--png-dir", o->pngDir, "Write a render of each pose here (needs a display)");
-  cmd->add_option("--out", o->out, "Output directory: posed meshes, tets.vtu, skeleton.bvh")->required();
+  cmd->add_flag("--quality-only", o->qualityOnly, "Write only quality.tsv (inverted tets, volume changes), no poses");
+  cmd->add_option("--out", o->out, "Output directory: posed meshes, tets.vtu, skeleton.bvh; quality.tsv")->required();
   addCommonOptions(*cmd, o->common);
   cmd->footer(
       "Examples:\n  vesalius pose --anatomy body-rig --motion testdata/motion/01_01.bvh --frame 400 --method dqs "
       "--out posed\n  vesalius pose --anatomy body-rig --angles 'upperleg01.L=-30,0,0' --method dqs --out flexed\n"
       "  xvfb-run -a vesalius pose --anatomy body-rig --motion testdata/motion/01_01.bvh --frames 0:120 "
-      "--method lbs --out walk --png-dir walk-png");
-  cmd->callback([o] { runPose(*o); });
+      "--method lbs --out walk --png-dir walk-png\n"
+      "  vesalius pose --anatomy body-rig --motion testdata/motion/01_01.bvh --frames 0:2751 --every 25 "
+      "--method cor --quality-only --out cor-quality");
+  cmd->callback([o, every] {
+    o->everyGiven = every->count() > 0;
+    runPose(*o);
+  });
 }
 
 }  // namespace vesalius::cli
