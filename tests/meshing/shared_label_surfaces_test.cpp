@@ -66,7 +66,7 @@ TEST(SharedLabelSurfaces, TouchingLabelsShareTheirTrianglesAndKeepTheirVolumes) 
     const TriMesh mesh = surfaceOfLabel(s, id);
     expectClosedAndClean(mesh, "label " + std::to_string(id));
     volume[id] = enclosedVolume(mesh.V, mesh.F);
-    EXPECT_NEAR(volume[id] / voxelVolume(map, id), 1.0, 0.03) << id;
+    EXPECT_NEAR(volume[id] / voxelVolume(map, id), 1.0, 0.002) << id;
   }
   // Shared triangles: the labels' volumes add up to what the faces on the outside enclose, to round-off.
   TriMesh outside;
@@ -147,12 +147,10 @@ TEST(SharedLabelSurfaces, EveryLabelOfTheTestCtIsClosedAndTouchingOnesShareFaces
     EXPECT_EQ(edges.boundary, 0) << name;
     EXPECT_EQ(edges.nonManifold, 0) << name;
     const double voxels = voxelVolume(map, id);
-    // Large labels keep their voxel volume; thin ones (ribs) gain what repairs gave them.
-    const double ratio = enclosedVolume(mesh.V, mesh.F) / voxels;
-    if (voxels > 100000.0) {
-      EXPECT_NEAR(ratio, 1.0, 0.02) << name;
-    } else if (voxels > 40000.0) {
-      EXPECT_NEAR(ratio, 1.0, 0.03) << name;
+    // Every label keeps its voxel volume, thin ribs included (they gain voxels in the repairs); labels of
+    // a voxel or three (cut by the scan's edge) have too few vertices of their own to give the volume back.
+    if (voxels > 1000.0) {
+      EXPECT_NEAR(enclosedVolume(mesh.V, mesh.F) / voxels, 1.0, 0.002) << name;
     }
   }
 }

@@ -156,6 +156,44 @@ MatrixX3i splitQuads(const Net& net, const MatrixX3d& P) {
   return F;
 }
 
+// Voxels per label id (all 65536 ids).
+std::vector<long> voxelCounts(const Grid<Label>& g) {
+  std::vector<long> count(65536, 0);
+  for (Label l : g.values) ++count[l];
+  return count;
+}
+
+// Each label's enclosed volume back to `target` (mm³ per label id): the vertices it alone shares with
+// the background (label set {0, L}) move along their volume gradients, one distance per label, by two
+// Newton steps. Vertices on interfaces between labels stay, so the sharing is kept.
+void restoreVolumes(MatrixX3d& P, const Net& net, const MatrixX3i& F, const std::vector<double>& target) {
+  auto ownLabel = [&](Eigen::Index v) {  // L for a vertex of set {0, L}, else 0
+    const auto& set = net.labelSet[std::size_t(v)];
+    return net.labelCount[std::size_t(v)] == 2 && set[0] == 0 ? set[1] : Label(0);
+  };
+  for (int step = 0; step < 2; ++step) {
+    std::vector<double> volume(65536, 0.0), rate(65536, 0.0);
+    MatrixX3d gradient = MatrixX3d::Zero(P.rows(), 3);  // d(volume of the vertex's own label) / d(position)
+    for (Eigen::Index t = 0; t < F.rows(); ++t) {
+      const auto& sides = net.sides[std::size_t(t / 2)];  // F's normal points out of sides[0]
+      const Eigen::Vector3d p0 = P.row(F(t, 0)), p1 = P.row(F(t, 1)), p2 = P.row(F(t, 2));
+      const double v = p0.dot(p1.cross(p2)) / 6.0;
+      volume[std::size_t(sides[0])] += v;
+      volume[std::size_t(sides[1])] -= v;
+      const Eigen::RowVector3d third = ((p1 - p0).cross(p2 - p0) / 6.0).transpose();  // area vector / 3
+      for (int k = 0; k < 3; ++k)
+        if (const Label own = ownLabel(F(t, k)); own != 0) gradient.row(F(t, k)) += own == sides[0] ? third : -third;
+    }
+    for (Eigen::Index v = 0; v < P.rows(); ++v) rate[ownLabel(v)] += gradient.row(v).norm();
+    for (Eigen::Index v = 0; v < P.rows(); ++v) {
+      const Label own = ownLabel(v);
+      const double norm = gradient.row(v).norm();
+      if (own == 0 || norm == 0.0 || rate[own] == 0.0) continue;
+      P.row(v) += (target[own] - volume[own]) / rate[own] * gradient.row(v) / norm;
+    }
+  }
+}
+
 // Smoothing can fold a few triangles through others. Their vertices go back towards their corners,
 // halfway twice and then all the way, until nothing crosses; the voxel faces themselves never cross,
 // so this ends. Only the triangles around moved vertices are tested again.
@@ -191,12 +229,16 @@ SharedLabelSurfaces sharedLabelSurfaces(const LabelMap& labels, const std::vecto
   SharedLabelSurfaces out;
   if (progress) progress->begin("well-composed", "repairing diagonal contacts");
   Grid<Label> g = chosenLabelsPadded(labels.labels, ids, out.ids);
+  std::vector<double> voxelVolume(65536, 0.0);
+  const std::vector<long> voxels = voxelCounts(g);
+  for (std::size_t l = 0; l < voxels.size(); ++l) voxelVolume[l] = double(voxels[l]) * g.geometry.spacing.prod();
   out.repairedVoxels = detail::makeWellComposed(g);
   if (progress) progress->begin("surfaces", "shared surfaces of " + std::to_string(out.ids.size()) + " labels");
   const Net net = buildNet(g);
   const MatrixX3d corners = smoothedPositions(net, g.geometry.spacing, 0);
   MatrixX3d P = smoothedPositions(net, g.geometry.spacing, options.smoothingIterations);
   out.F = splitQuads(net, P);
+  restoreVolumes(P, net, out.F, voxelVolume);
   undoCrossings(P, corners, out.F);
   out.V = (P * g.geometry.direction.transpose()).rowwise() + g.geometry.origin.transpose();
   // A left-handed grid (one axis flipped) mirrors the quads' winding in LPS.

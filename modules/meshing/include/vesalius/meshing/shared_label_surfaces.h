@@ -20,12 +20,14 @@
 //    each vertex is then clamped to its cell (within 0.45 voxel of its corner, per axis), which keeps
 //    the surface within about half a voxel of the voxel boundary. Means are taken in mm.
 // 4. Quads are split along their shorter diagonal; both labels of a face use the same two triangles.
-// 5. Smoothing can fold a few triangles through others; their vertices are moved back towards their
+// 5. Each label gets its voxel volume back (as counted before the repairs): the vertices it alone shares
+//    with the background move along their volume gradients by one distance per label (two Newton steps);
+//    vertices between labels stay, so the sharing is kept.
+// 6. Smoothing can fold a few triangles through others; their vertices are moved back towards their
 //    corners until no triangle crosses another (the voxel faces never do).
 // Deviations from Frisken: the vertex types come from the label sets directly (she classifies by face
 // count per cell), with the same effect, sharp junctions kept; the smoothing steps are Taubin's λ/μ pairs
-// rather than plain averaging, which shrank 3 mm organs by 5-15% (now within 2% of their voxel volume
-// above 100 mL on the test CT); and step 5 is ours.
+// rather than plain averaging, which shrank 3 mm organs by 5-15%; steps 5 and 6 are ours.
 #pragma once
 
 #include "vesalius/core/label_map.h"
