@@ -3,6 +3,7 @@
 // boundaries, in surfaces and in one tet mesh; an open and a self-intersecting surface are refused with
 // exit 3 and one line, writing nothing; `vesalius info` counts self-intersections.
 #include "run_command.h"
+#include "test_label_maps.h"
 
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/tet_locator.h"
@@ -42,12 +43,9 @@ LabelMap softAndBone(const Eigen::Vector3i& size, const std::function<Label(cons
   GridGeometry g;
   g.size = size;
   g.spacing = {2, 2, 2};
-  LabelMap map{Grid<Label>(g), {}};
+  LabelMap map = paintedLabelMap(g, [&](const Eigen::Vector3d& p) { return labelAt(p / 2.0); });  // p = 2 index
   map.table.add({1, "soft", {200, 100, 100}});
   map.table.add({5, "bone", {240, 220, 150}});
-  for (int k = 0; k < size.z(); ++k)
-    for (int j = 0; j < size.y(); ++j)
-      for (int i = 0; i < size.x(); ++i) map.labels.at(i, j, k) = labelAt(Eigen::Vector3d(i, j, k));
   return map;
 }
 

@@ -4,6 +4,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_io.h"
+#include "test_label_maps.h"
 
 #include <gtest/gtest.h>
 
@@ -24,15 +25,10 @@ LabelMap balls() {
       (Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
   g.origin = kCentre - g.direction * g.spacing.cwiseProduct(Eigen::Vector3d(24, 26, 20));
-  LabelMap map;
-  map.labels = Grid<Label>(g, 0);
-  for (int k = 0; k < g.size.z(); ++k)
-    for (int j = 0; j < g.size.y(); ++j)
-      for (int i = 0; i < g.size.x(); ++i) {
-        const Eigen::Vector3d p = g.indexToWorld(Eigen::Vector3d(i, j, k));
-        if ((p - kCentre).norm() <= kRadius) map.labels.at(i, j, k) = 3;
-        if ((p - kCentre - Eigen::Vector3d(0, 0, 13)).norm() <= 2.5) map.labels.at(i, j, k) = 7;
-      }
+  LabelMap map = test::paintedLabelMap(g, [](const Eigen::Vector3d& p) {
+    if ((p - kCentre - Eigen::Vector3d(0, 0, 13)).norm() <= 2.5) return 7;
+    return (p - kCentre).norm() <= kRadius ? 3 : 0;
+  });
   map.table.add({3, "ball"});
   map.table.add({7, "small"});
   return map;

@@ -10,6 +10,7 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/tetrahedralize.h"
+#include "test_label_maps.h"
 
 #include <gtest/gtest.h>
 
@@ -29,16 +30,10 @@ LabelMap splitBall() {
   g.direction = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                 Eigen::Vector3d(1, -1, 1).asDiagonal();
   g.origin = -g.direction * g.spacing.cwiseProduct(Eigen::Vector3d(20, 20, 18));
-  LabelMap map;
-  map.labels = Grid<Label>(g, 0);
-  for (int k = 0; k < g.size.z(); ++k)
-    for (int j = 0; j < g.size.y(); ++j)
-      for (int i = 0; i < g.size.x(); ++i) {
-        const Eigen::Vector3d p = g.indexToWorld(Eigen::Vector3d(i, j, k));
-        if (p.norm() <= 12.0) map.labels.at(i, j, k) = p.x() < 0 ? 1 : 2;
-        if ((p - Eigen::Vector3d(9, 0, 0)).norm() <= 5.0) map.labels.at(i, j, k) = 3;
-      }
-  return map;
+  return test::paintedLabelMap(g, [](const Eigen::Vector3d& p) {
+    if ((p - Eigen::Vector3d(9, 0, 0)).norm() <= 5.0) return 3;
+    return p.norm() <= 12.0 ? (p.x() < 0 ? 1 : 2) : 0;
+  });
 }
 
 double voxelVolume(const LabelMap& map, Label id) {

@@ -16,19 +16,19 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 
 // Connected part of each triangle (triangles joined through shared vertices), by union-find.
-std::vector<int> triangleParts(const TriMesh& m, int& count) {
-  std::vector<int> parent(std::size_t(m.V.rows()));
+std::vector<int> triangleParts(Eigen::Index vertexCount, const MatrixX3i& F, int& count) {
+  std::vector<int> parent(static_cast<std::size_t>(vertexCount));
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int v) {
     while (parent[v] != v) v = parent[v] = parent[parent[v]];
     return v;
   };
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
-    for (int k = 1; k < 3; ++k) parent[find(m.F(f, k))] = find(m.F(f, 0));
-  std::vector<int> id(parent.size(), -1), part(std::size_t(m.F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 1; k < 3; ++k) parent[find(F(f, k))] = find(F(f, 0));
+  std::vector<int> id(parent.size(), -1), part(std::size_t(F.rows()));
   count = 0;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
-    int& root = id[find(m.F(f, 0))];
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    int& root = id[find(F(f, 0))];
     if (root < 0) root = count++;
     part[f] = root;
   }
@@ -100,7 +100,7 @@ int enclosingSurface(const TriMesh& all, const std::vector<std::vector<int>>& fa
 
 std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner) {
   int count = 0;
-  const std::vector<int> part = triangleParts(all, count);
+  const std::vector<int> part = triangleParts(all.V.rows(), all.F, count);
   std::vector<std::vector<int>> triangles(static_cast<std::size_t>(count));
   for (Eigen::Index f = 0; f < all.F.rows(); ++f) triangles[part[f]].push_back(int(f));
   const TriangleTree tree(all.V, all.F);
@@ -133,14 +133,11 @@ std::vector<RegionSeed> partitionSeeds(const TriMesh& all, const Eigen::MatrixX2
   std::vector<RegionSeed> seeds;
   for (std::size_t region = 0; region < labels.size(); ++region) {
     const int label = labels[region];
-    TriMesh own;
-    own.V = all.V;
     std::vector<int> faces;
     for (Eigen::Index f = 0; f < all.F.rows(); ++f)
       if (sides(f, 0) == label || sides(f, 1) == label) faces.push_back(int(f));
-    own.F = all.F(faces, Eigen::all);
     int count = 0;
-    const std::vector<int> part = triangleParts(own, count);
+    const std::vector<int> part = triangleParts(all.V.rows(), all.F(faces, Eigen::all), count);
     std::vector<std::vector<int>> triangles(static_cast<std::size_t>(count));
     for (std::size_t i = 0; i < faces.size(); ++i) triangles[std::size_t(part[i])].push_back(faces[i]);
     for (const std::vector<int>& t : triangles) {
