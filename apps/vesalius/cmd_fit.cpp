@@ -21,6 +21,7 @@
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/decimate_surface.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/viz/slice_overlay.h"
@@ -98,7 +99,7 @@ Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   auto timer = report.time("tetrahedralize");
   meshing::TetrahedralizeOptions options;
   options.targetTets = o.targetTets;
-  t.tets = meshing::tetrahedralize(*t.surface, options, o.templ);
+  t.tets = meshing::tetrahedralize(meshing::decimateSurface(*t.surface, o.templateFaces), options, o.templ);
   return t;
 }
 
@@ -446,6 +447,7 @@ void reportInputs(const FitCommandOptions& o, io::Report& report) {
   report.parameter("attach_radius_mm", o.attachRadius);
   report.parameter("unattached", o.unattached);
   report.parameter("target_tets", o.targetTets);
+  report.parameter("template_faces", o.templateFaces);
   report.parameter("icp_iterations", o.solver.icpIterations);
   report.parameter("max_icp_error_mm", o.solver.maxIcpError);
   report.parameter("marker_weight", o.solver.markerWeight);
@@ -627,6 +629,12 @@ void addFitCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--target-tets", o->targetTets, "About this many tets for a surface template")
       ->check(CLI::Range(100L, 10000000L))
+      ->capture_default_str();
+  cmd->add_option("--template-faces", o->templateFaces,
+                  "Decimate a surface template to about this many triangles before tetrahedralizing it (TetGen "
+                  "keeps every surface triangle, so a fine surface means many tets); the full surface is still "
+                  "carried to --surface-out. 0 keeps them all")
+      ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   addCommonOptions(*cmd, o->common);
   cmd->footer(

@@ -18,6 +18,7 @@ struct FitCommandOptions {
   bool unattached = false;
   std::string method = "plastic", init = "similarity";
   long targetTets = 20000;
+  int templateFaces = 0;  // decimate a surface template to this many triangles first; 0 keeps them all
   double window = 400, level = 40;
   fit::FitOptions solver;
   CommonOptions common;

@@ -40,6 +40,7 @@ void addLabelsCommand(CLI::App& app);
 void addSurfaceCommand(CLI::App& app);
 void addTetmeshCommand(CLI::App& app);
 void addFitCommand(CLI::App& app);
+void addSeparateCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addRigCommand(CLI::App& app);
 void addPoseCommand(CLI::App& app);

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   vesalius::cli::addTetmeshCommand(app);
   vesalius::cli::addMarkersCommand(app);
   vesalius::cli::addFitCommand(app);
+  vesalius::cli::addSeparateCommand(app);
   vesalius::cli::addRigCommand(app);
   vesalius::cli::addPoseCommand(app);
   vesalius::cli::addFatCommand(app);

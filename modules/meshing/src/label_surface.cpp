@@ -2,6 +2,7 @@
 // the one-pass label boxes (label_boxes.h).
 #include "vesalius/meshing/label_surface.h"
 
+#include "decimate_polydata.h"
 #include "label_boxes.h"
 #include "restore_volume.h"
 #include "vesalius/core/error.h"
@@ -9,11 +10,9 @@
 #include "vesalius/core/self_intersections.h"
 #include "vesalius/io/polydata.h"
 
-#include <vtkDecimatePro.h>
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageData.h>
 #include <vtkPoints.h>
-#include <vtkQuadricDecimation.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
 #include <algorithm>
@@ -101,30 +100,6 @@ vtkSmartPointer<vtkPolyData> smooth(vtkPolyData* surface, const SurfaceOptions& 
   return sinc->GetOutput();
 }
 
-// Quadric decimation (Garland and Heckbert) gives the better shapes but may tear a label of many small,
-// thin pieces (the demo CT's bone came out with open and non-manifold edges); such a result is replaced by
-// vtkDecimatePro with the topology kept, which stops short of the target where it cannot reach it safely.
-vtkSmartPointer<vtkPolyData> decimate(vtkPolyData* surface, int targetFaces) {
-  const vtkIdType faces = surface->GetNumberOfPolys();
-  if (targetFaces <= 0 || faces <= targetFaces) return surface;
-  const double reduction = 1.0 - double(targetFaces) / double(faces);
-  auto quadric = vtkSmartPointer<vtkQuadricDecimation>::New();
-  quadric->SetInputData(surface);
-  quadric->SetTargetReduction(reduction);
-  quadric->VolumePreservationOn();
-  quadric->Update();
-  const EdgeCounts edges = countEdges(io::fromPolyData(quadric->GetOutput(), "decimated label surface").F);
-  if (edges.boundary == 0 && edges.nonManifold == 0) return quadric->GetOutput();
-  auto pro = vtkSmartPointer<vtkDecimatePro>::New();
-  pro->SetInputData(surface);
-  pro->SetTargetReduction(reduction);
-  pro->PreserveTopologyOn();
-  pro->SplittingOff();
-  pro->BoundaryVertexDeletionOff();
-  pro->Update();
-  return pro->GetOutput();
-}
-
 void validate(const SurfaceOptions& o) {
   // One windowed-sinc iteration is a degree-one filter that VTK cannot fit ("an optimal offset could not be
   // found") and returns a collapsed surface.
@@ -136,7 +111,7 @@ void validate(const SurfaceOptions& o) {
 
 // Smoothing, decimation and outward orientation of one contour.
 TriMesh smoothedSurface(vtkPolyData* surface, const SurfaceOptions& options) {
-  TriMesh mesh = io::fromPolyData(decimate(smooth(surface, options), options.targetFaces), "label surface");
+  TriMesh mesh = io::fromPolyData(detail::decimatePolyData(smooth(surface, options), options.targetFaces), "label surface");
   // Flying edges orients every triangle consistently; a direction matrix with negative determinant
   // (a mirrored grid) turns the whole surface inside out, which the sign of the volume shows.
   if (enclosedVolume(mesh.V, mesh.F) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
