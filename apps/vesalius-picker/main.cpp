@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   app.add_option("--landmark-names", options.landmarkNamesPath, "Landmark names to place in order, one a line");
   app.add_option("--overlay", options.overlayPaths, "Mesh drawn as a contour on the slices and a surface in 3D");
   app.add_option("--labels", options.labelsPath, "Label map drawn as a translucent colour layer");
+  app.add_option("--accept-confidence", options.acceptConfidence,
+                 "Shift+A accepts the suggestions (previews) of at least this confidence; 0: all")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--play", options.playEventsPath, "Play a VTK event-recorder file after start");
   app.add_flag("--exit-after-play", options.exitAfterPlay, "Quit (autosaving) once --play is done");
   app.add_option("--record", options.recordEventsPath, "Record this session's events to a file");

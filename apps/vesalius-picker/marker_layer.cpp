@@ -3,6 +3,7 @@
 #include <vtkActor.h>
 #include <vtkActor2D.h>
 #include <vtkCellArray.h>
+#include <vtkDiskSource.h>
 #include <vtkGlyph3DMapper.h>
 #include <vtkLabeledDataMapper.h>
 #include <vtkPointData.h>
@@ -26,15 +27,26 @@ vtkSmartPointer<vtkPolyData> emptyPoints() {
 
 constexpr double kScreenSpherePixels = 9;
 
-// One glyph mapper drawing a unit disc, scaled per show(), at every point of `points`.
-vtkSmartPointer<vtkMapper> discMapper(vtkPolyData* points) {
-  auto disc = vtkSmartPointer<vtkRegularPolygonSource>::New();
-  disc->SetNumberOfSides(24);
-  disc->SetRadius(1.0);
-  disc->SetNormal(0, 0, 1);
+constexpr double kPreviewRingInner = 0.55;  // of the radius: a ring, clearly not a placed marker's disc
+constexpr double kPreviewDimming = 0.55;    // 3D previews: the kind's colour this much as bright
+
+// One glyph mapper drawing a unit disc (or ring), scaled per show(), at every point of `points`.
+vtkSmartPointer<vtkMapper> discMapper(vtkPolyData* points, bool ring) {
   auto mapper = vtkSmartPointer<vtkGlyph3DMapper>::New();
   mapper->SetInputData(points);
-  mapper->SetSourceConnection(disc->GetOutputPort());
+  if (ring) {
+    auto annulus = vtkSmartPointer<vtkDiskSource>::New();
+    annulus->SetInnerRadius(kPreviewRingInner);
+    annulus->SetOuterRadius(1.0);
+    annulus->SetCircumferentialResolution(24);
+    mapper->SetSourceConnection(annulus->GetOutputPort());
+  } else {
+    auto disc = vtkSmartPointer<vtkRegularPolygonSource>::New();
+    disc->SetNumberOfSides(24);
+    disc->SetRadius(1.0);
+    disc->SetNormal(0, 0, 1);
+    mapper->SetSourceConnection(disc->GetOutputPort());
+  }
   mapper->ScalingOn();
   mapper->SetScaleModeToNoDataScaling();
   return mapper;
@@ -59,27 +71,29 @@ Eigen::Vector3d markerKindColour(MarkerKind kind) {
 }
 
 MarkerLayer::MarkerLayer(vtkRenderer* renderer, GlyphShape shape) : shape_(shape) {
-  for (MarkerKind kind : {MarkerKind::Landmark, MarkerKind::IcpMarker, MarkerKind::Attachment}) {
-    const int k = int(kind);
-    pointsPerKind_[k] = emptyPoints();
-    actorsPerKind_[k] = vtkSmartPointer<vtkActor>::New();
-    vtkProperty* property = actorsPerKind_[k]->GetProperty();
-    const Eigen::Vector3d colour = markerKindColour(kind);
-    property->SetColor(colour.x(), colour.y(), colour.z());
+  for (int group = 0; group < 6; ++group) {
+    const bool preview = group >= 3;
+    pointsPerGroup_[group] = emptyPoints();
+    actorsPerGroup_[group] = vtkSmartPointer<vtkActor>::New();
+    vtkProperty* property = actorsPerGroup_[group]->GetProperty();
+    const Eigen::Vector3d colour = markerKindColour(MarkerKind(group % 3));
     if (shape == GlyphShape::Disc) {
-      actorsPerKind_[k]->SetMapper(discMapper(pointsPerKind_[k]));
+      actorsPerGroup_[group]->SetMapper(discMapper(pointsPerGroup_[group], preview));
+      property->SetColor(colour.x(), colour.y(), colour.z());
       property->SetAmbient(1.0);  // flat colour, exactly the kind's, whatever the lights
       property->SetDiffuse(0.0);
       property->SetSpecular(0.0);
     } else {
+      const Eigen::Vector3d shown = preview ? Eigen::Vector3d(kPreviewDimming * colour) : colour;
+      property->SetColor(shown.x(), shown.y(), shown.z());
       auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-      mapper->SetInputData(pointsPerKind_[k]);
-      actorsPerKind_[k]->SetMapper(mapper);
+      mapper->SetInputData(pointsPerGroup_[group]);
+      actorsPerGroup_[group]->SetMapper(mapper);
       property->SetRepresentationToPoints();
       property->RenderPointsAsSpheresOn();
       property->SetPointSize(kScreenSpherePixels);
     }
-    renderer->AddActor(actorsPerKind_[k]);
+    renderer->AddActor(actorsPerGroup_[group]);
   }
   labelAnchors_ = emptyPoints();
   auto labelMapper = vtkSmartPointer<vtkLabeledDataMapper>::New();
@@ -100,25 +114,25 @@ MarkerLayer::MarkerLayer(vtkRenderer* renderer, GlyphShape shape) : shape_(shape
 MarkerLayer::~MarkerLayer() = default;
 
 void MarkerLayer::show(const std::vector<MarkerGlyph>& glyphs, double radius) {
-  std::array<vtkSmartPointer<vtkPoints>, 3> points;
+  std::array<vtkSmartPointer<vtkPoints>, 6> points;
   for (auto& p : points) p = vtkSmartPointer<vtkPoints>::New();
   auto anchors = vtkSmartPointer<vtkPoints>::New();
   auto labels = vtkSmartPointer<vtkStringArray>::New();
   labels->SetName("label");
   for (const MarkerGlyph& glyph : glyphs) {
-    points[int(glyph.kind)]->InsertNextPoint(glyph.position.data());
+    points[int(glyph.kind) + 3 * glyph.preview]->InsertNextPoint(glyph.position.data());
     if (glyph.label.empty()) continue;
     const Eigen::Vector3d anchor = glyph.position + Eigen::Vector3d(1.5 * radius, 0, 0);
     anchors->InsertNextPoint(anchor.data());
     labels->InsertNextValue(glyph.label);
   }
-  for (int k = 0; k < 3; ++k) {
-    pointsPerKind_[k]->SetPoints(points[k]);
+  for (int group = 0; group < 6; ++group) {
+    pointsPerGroup_[group]->SetPoints(points[group]);
     if (shape_ == GlyphShape::Disc)
-      static_cast<vtkGlyph3DMapper*>(actorsPerKind_[k]->GetMapper())->SetScaleFactor(radius);
+      static_cast<vtkGlyph3DMapper*>(actorsPerGroup_[group]->GetMapper())->SetScaleFactor(radius);
     else
-      pointsPerKind_[k]->SetVerts(vertexPerPoint(points[k]->GetNumberOfPoints()));
-    pointsPerKind_[k]->Modified();
+      pointsPerGroup_[group]->SetVerts(vertexPerPoint(points[group]->GetNumberOfPoints()));
+    pointsPerGroup_[group]->Modified();
   }
   labelAnchors_->SetPoints(anchors);
   labelAnchors_->GetPointData()->Initialize();

@@ -1,7 +1,9 @@
-// Markers drawn in one renderer: one actor per marker kind, so 5,000 markers cost three actors, not
-// 5,000, plus one label mapper. Slice views draw discs with a glyph mapper; the 3D view draws each
-// marker as one point rendered as a sphere by the GPU, which keeps thousands of them cheap. The caller decides which markers to show and where (a slice view
-// passes the ones on its slice in plane coordinates; the 3D view passes all of them in world space).
+// Markers drawn in one renderer: one actor per marker kind and status (placed or preview), so 5,000
+// markers cost six actors, not 5,000, plus one label mapper. Slice views draw discs with a glyph
+// mapper; the 3D view draws each marker as one point rendered as a sphere by the GPU, which keeps
+// thousands of them cheap. Previews (suggestions to accept or reject) are rings of their kind's colour
+// in the slices and dimmer spheres in 3D. The caller decides which markers to show and where (a slice
+// view passes the ones on its slice in plane coordinates; the 3D view passes all of them in world space).
 #pragma once
 
 #include "vesalius/core/markers.h"
@@ -27,7 +29,8 @@ Eigen::Vector3d markerKindColour(MarkerKind kind);
 struct MarkerGlyph {
   Eigen::Vector3d position;  // in the renderer's coordinates
   MarkerKind kind = MarkerKind::Landmark;
-  std::string label;  // empty: no label
+  bool preview = false;  // a suggestion not yet accepted
+  std::string label;     // empty: no label
 };
 
 // Flat discs facing +z, sized in the renderer's units (slices); spheres of a fixed size on screen (3D).
@@ -43,8 +46,9 @@ class MarkerLayer {
   void show(const std::vector<MarkerGlyph>& glyphs, double radius);
 
  private:
-  std::array<vtkSmartPointer<vtkPolyData>, 3> pointsPerKind_;
-  std::array<vtkSmartPointer<vtkActor>, 3> actorsPerKind_;
+  // Indexed by kind + 3 * preview.
+  std::array<vtkSmartPointer<vtkPolyData>, 6> pointsPerGroup_;
+  std::array<vtkSmartPointer<vtkActor>, 6> actorsPerGroup_;
   GlyphShape shape_;
   vtkSmartPointer<vtkPolyData> labelAnchors_;
   vtkSmartPointer<vtkActor2D> labelActor_;

@@ -140,7 +140,7 @@ int runPicker(const PickerOptions& options) {
   PickerWindow window(scan, options.windowWidth, options.windowHeight);
   if (!options.labelsPath.empty()) addLabelLayers(window, options.labelsPath);
   addOverlays(window, options.overlayPaths);
-  PickerController controller(document, window, scan, outputPath, options.force);
+  PickerController controller(document, window, scan, outputPath, options.force, options.acceptConfidence);
   auto style = vtkSmartPointer<PickerInteractorStyle>::New();
   style->setController(&controller);
   window.interactor()->SetInteractorStyle(style);

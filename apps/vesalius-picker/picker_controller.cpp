@@ -28,9 +28,9 @@ MarkerKind nextKind(MarkerKind kind) {
 }  // namespace
 
 PickerController::PickerController(PickerDocument& document, PickerWindow& window, const ScanVolume& scan,
-                                   std::string outputPath, bool replaceOutput)
+                                   std::string outputPath, bool replaceOutput, double acceptConfidence)
     : document_(document), window_(window), scan_(scan), outputPath_(std::move(outputPath)),
-      replaceOutput_(replaceOutput), windowLevel_(kCtSoftTissue) {
+      replaceOutput_(replaceOutput), acceptConfidence_(acceptConfidence), windowLevel_(kCtSoftTissue) {
   if (scan.image().fileType != PixelType::Int16 && scan.image().fileType != PixelType::Int32)
     windowLevel_ = percentileWindowLevel(scan.image());  // not stored as HU: most likely MRI
   window_.setWindowLevel(windowLevel_);
@@ -152,6 +152,10 @@ void PickerController::keyPress(const std::string& keySym, const MouseEvent& eve
     kind_ = MarkerKind(keySym[0] - '1');
   } else if (keySym == "Delete" || keySym == "BackSpace" || keySym == "d") {
     deleteMarkerUnder(event);
+  } else if (keySym == "a" || keySym == "x") {
+    acceptOrRejectPreviewUnder(event, keySym == "a");
+  } else if (keySym == "A") {
+    acceptAllPreviews();
   } else if (keySym == "n") {
     skipNamedLandmark();
   } else if (keySym == "Prior" || keySym == "Up") {
@@ -176,10 +180,12 @@ Eigen::Vector3d PickerController::pickedPoint(const SliceView& view, const Mouse
   return snapToEdges_ ? snapToEdge(scan_.image(), world, view.frame().normal, kSnapRadius) : world;
 }
 
-std::optional<std::size_t> PickerController::markerUnder(SliceView& view, const MouseEvent& event) const {
+std::optional<std::size_t> PickerController::markerUnder(SliceView& view, const MouseEvent& event,
+                                                         bool previewsOnly) const {
   const Eigen::Vector3d world = view.displayToWorld(event.x, event.y);
-  return document_.nearestMarker(world, kGrabRadiusPixels * view.millimetresPerPixel(),
-                                 [&view](const Marker& m) { return view.isOnSlice(m.position); });
+  return document_.nearestMarker(world, kGrabRadiusPixels * view.millimetresPerPixel(), [&](const Marker& m) {
+    return view.isOnSlice(m.position) && (!previewsOnly || m.status == MarkerStatus::Preview);
+  });
 }
 
 void PickerController::deleteMarkerUnder(const MouseEvent& event) {
@@ -190,6 +196,30 @@ void PickerController::deleteMarkerUnder(const MouseEvent& event) {
     return;
   }
   document_.removeMarker(*index);
+}
+
+void PickerController::acceptOrRejectPreviewUnder(const MouseEvent& event, bool accept) {
+  SliceView* view = window_.sliceViewAt(event.x, event.y);
+  const auto index = view ? markerUnder(*view, event, true) : std::nullopt;
+  if (!index) {
+    message_ = "no suggestion under the mouse";
+    return;
+  }
+  message_ = (accept ? "accepted " : "rejected ") + document_.marker(*index).label;
+  if (accept)
+    document_.acceptPreview(*index);
+  else
+    document_.rejectPreview(*index);
+}
+
+void PickerController::acceptAllPreviews() {
+  const std::size_t accepted = document_.acceptPreviews(acceptConfidence_);
+  char text[120];
+  if (acceptConfidence_ > 0)
+    std::snprintf(text, sizeof text, "accepted %zu suggestions of confidence >= %.2f", accepted, acceptConfidence_);
+  else
+    std::snprintf(text, sizeof text, "accepted %zu suggestions", accepted);
+  message_ = text;
 }
 
 void PickerController::skipNamedLandmark() {
@@ -242,6 +272,8 @@ std::string PickerController::stateLine() const {
   if (kind_ == MarkerKind::Landmark)
     if (const auto named = document_.nextUndefinedLandmark(namedLandmarkCursor_))
       line += "  next: " + document_.marker(*named).label + " (n skips)";
+  if (const std::size_t previews = document_.previewCount())
+    line += "  suggestions: " + std::to_string(previews) + " (a, x, A)";
   line += document_.hasUnsavedEdits() ? "   unsaved" : "   saved";
   if (!message_.empty()) line += "   " + message_;
   return line;

@@ -1,5 +1,6 @@
-// What the picker does with mouse and keys: places, drags and deletes markers in the document, moves
-// slices, zoom, pan, window/level, undo/redo, save. Every shortcut is listed in docs/picker.md.
+// What the picker does with mouse and keys: places, drags and deletes markers in the document, accepts
+// or rejects suggestions, moves slices, zoom, pan, window/level, undo/redo, save. Every shortcut is
+// listed in docs/picker.md.
 #pragma once
 
 #include "picker_document.h"
@@ -21,8 +22,9 @@ struct MouseEvent {
 
 class PickerController {
  public:
+  // `acceptConfidence`: Shift+A accepts the suggestions of at least this confidence (0: all).
   PickerController(PickerDocument& document, PickerWindow& window, const ScanVolume& scan,
-                   std::string outputPath, bool replaceOutput);
+                   std::string outputPath, bool replaceOutput, double acceptConfidence = 0);
 
   void leftButtonDown(const MouseEvent& event);
   void leftButtonUp(const MouseEvent& event);
@@ -41,12 +43,14 @@ class PickerController {
   void placeOrGrab(SliceView& view, const MouseEvent& event);
   void setCrosshair(const Eigen::Vector3d& world);
   void deleteMarkerUnder(const MouseEvent& event);
+  void acceptOrRejectPreviewUnder(const MouseEvent& event, bool accept);
+  void acceptAllPreviews();
   void skipNamedLandmark();
   void save();
   void quit();
   void stepSlicesUnder(const MouseEvent& event, int steps);
   void updateCursorReadout(const MouseEvent& event);
-  std::optional<std::size_t> markerUnder(SliceView& view, const MouseEvent& event) const;
+  std::optional<std::size_t> markerUnder(SliceView& view, const MouseEvent& event, bool previewsOnly = false) const;
   // The world point under the mouse, moved to the strongest edge nearby when snapping is on.
   Eigen::Vector3d pickedPoint(const SliceView& view, const MouseEvent& event) const;
   std::string stateLine() const;
@@ -56,6 +60,7 @@ class PickerController {
   const ScanVolume& scan_;
   std::string outputPath_;
   bool replaceOutput_;
+  double acceptConfidence_;
   MarkerKind kind_ = MarkerKind::Landmark;
   bool snapToEdges_ = false;
   WindowLevel windowLevel_;

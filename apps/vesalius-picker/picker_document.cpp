@@ -3,6 +3,8 @@
 #include "vesalius/core/error.h"
 #include "vesalius/io/marker_io.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -38,23 +40,59 @@ std::size_t PickerDocument::addMarker(MarkerKind kind, const Eigen::Vector3d& po
   marker.kind = kind;
   marker.position = position;
   const std::size_t index = markers_.markers.size();
-  record({index, std::nullopt, marker});
+  record({{index, std::nullopt, marker}});
   return index;
 }
 
 void PickerDocument::moveMarker(std::size_t index, const Eigen::Vector3d& position) {
   Marker moved = marker(index);
   moved.position = position;
-  record({index, marker(index), moved});
+  record({{index, marker(index), moved}});
 }
 
-void PickerDocument::removeMarker(std::size_t index) { record({index, marker(index), std::nullopt}); }
+void PickerDocument::removeMarker(std::size_t index) { record({{index, marker(index), std::nullopt}}); }
 
 void PickerDocument::placeNamedMarker(std::size_t index, const Eigen::Vector3d& position) {
   Marker placed = marker(index);
   placed.status = MarkerStatus::Defined;
   placed.position = position;
-  record({index, marker(index), placed});
+  record({{index, marker(index), placed}});
+}
+
+void PickerDocument::requirePreview(std::size_t index) const {
+  if (marker(index).status != MarkerStatus::Preview)
+    throw UsageError("marker " + marker(index).label + " is not a suggestion (preview) to accept or reject");
+}
+
+void PickerDocument::acceptPreview(std::size_t index) {
+  requirePreview(index);
+  Marker accepted = marker(index);
+  accepted.status = MarkerStatus::Defined;
+  record({{index, marker(index), accepted}});
+}
+
+void PickerDocument::rejectPreview(std::size_t index) {
+  requirePreview(index);
+  removeMarker(index);
+}
+
+std::size_t PickerDocument::acceptPreviews(double minConfidence) {
+  Step step;
+  for (std::size_t i = 0; i < markers_.markers.size(); ++i) {
+    const Marker& m = markers_.markers[i];
+    if (m.status != MarkerStatus::Preview) continue;
+    if (minConfidence > 0 && suggestionConfidence(m).value_or(0) < minConfidence) continue;
+    Marker accepted = m;
+    accepted.status = MarkerStatus::Defined;
+    step.push_back({i, m, accepted});
+  }
+  if (!step.empty()) record(step);
+  return step.size();
+}
+
+std::size_t PickerDocument::previewCount() const {
+  return std::size_t(std::count_if(markers_.markers.begin(), markers_.markers.end(),
+                                   [](const Marker& m) { return m.status == MarkerStatus::Preview; }));
 }
 
 void PickerDocument::dragMarker(std::size_t index, const Eigen::Vector3d& position) {
@@ -67,46 +105,49 @@ void PickerDocument::finishDrag(std::size_t index, const Eigen::Vector3d& dragSt
   before.position = dragStartPosition;
   const Marker after = marker(index);
   markers_.markers[index] = before;
-  record({index, before, after});
+  record({{index, before, after}});
 }
 
 bool PickerDocument::undo() {
   if (undoStack_.empty()) return false;
-  const Edit edit = undoStack_.back();
+  const Step step = undoStack_.back();
   undoStack_.pop_back();
-  apply(edit, false);
-  redoStack_.push_back(edit);
+  apply(step, false);
+  redoStack_.push_back(step);
   autosave();
   return true;
 }
 
 bool PickerDocument::redo() {
   if (redoStack_.empty()) return false;
-  const Edit edit = redoStack_.back();
+  const Step step = redoStack_.back();
   redoStack_.pop_back();
-  apply(edit, true);
-  undoStack_.push_back(edit);
+  apply(step, true);
+  undoStack_.push_back(step);
   autosave();
   return true;
 }
 
-void PickerDocument::apply(const Edit& edit, bool forward) {
-  const std::optional<Marker>& from = forward ? edit.before : edit.after;
-  const std::optional<Marker>& to = forward ? edit.after : edit.before;
+void PickerDocument::apply(const Step& step, bool forward) {
   auto& list = markers_.markers;
-  if (!from) {
-    list.insert(list.begin() + std::ptrdiff_t(edit.index), *to);
-  } else if (!to) {
-    list.erase(list.begin() + std::ptrdiff_t(edit.index));
-  } else {
-    list.at(edit.index) = *to;
+  for (std::size_t i = 0; i < step.size(); ++i) {
+    const Edit& edit = forward ? step[i] : step[step.size() - 1 - i];
+    const std::optional<Marker>& from = forward ? edit.before : edit.after;
+    const std::optional<Marker>& to = forward ? edit.after : edit.before;
+    if (!from) {
+      list.insert(list.begin() + std::ptrdiff_t(edit.index), *to);
+    } else if (!to) {
+      list.erase(list.begin() + std::ptrdiff_t(edit.index));
+    } else {
+      list.at(edit.index) = *to;
+    }
   }
   changed();
 }
 
-void PickerDocument::record(const Edit& edit) {
-  apply(edit, true);
-  undoStack_.push_back(edit);
+void PickerDocument::record(const Step& step) {
+  apply(step, true);
+  undoStack_.push_back(step);
   redoStack_.clear();
   autosave();
 }
@@ -127,7 +168,7 @@ std::optional<std::size_t> PickerDocument::nearestMarker(const Eigen::Vector3d& 
   double nearestDistance = maxDistance;
   for (std::size_t i = 0; i < markers_.markers.size(); ++i) {
     const Marker& m = markers_.markers[i];
-    if (m.status != MarkerStatus::Defined || !m.visible || (accept && !accept(m))) continue;
+    if (m.status == MarkerStatus::Undefined || !m.visible || (accept && !accept(m))) continue;
     const double distance = (m.position - point).norm();
     if (distance <= nearestDistance) {
       nearest = i;
@@ -162,6 +203,17 @@ void PickerDocument::save(const std::string& path, bool replace) {
     std::error_code ignored;  // a sidecar that is already gone is what we want
     std::filesystem::remove(autosavePath_, ignored);
   }
+}
+
+std::optional<double> suggestionConfidence(const Marker& marker) {
+  static const std::string kKey = "confidence ";
+  const std::size_t at = marker.description.find(kKey);
+  if (at == std::string::npos) return std::nullopt;
+  const char* start = marker.description.c_str() + at + kKey.size();
+  char* end = nullptr;
+  const double confidence = std::strtod(start, &end);
+  if (end == start || !std::isfinite(confidence)) return std::nullopt;
+  return confidence;
 }
 
 }  // namespace vesalius::picker

@@ -3,6 +3,10 @@
 // No VTK here: the document is the app's model, tested on its own. Every edit goes through one of the
 // editing methods, becomes one entry of the undo stack, clears the redo stack, bumps revision() and, when
 // an autosave path is set, rewrites the sidecar atomically so nothing is lost if the app dies.
+//
+// Suggestions: `vesalius markers suggest` writes ICP markers with status preview (3D Slicer's
+// positionStatus) and "confidence C; ..." in their description. They stay preview, also in saved files,
+// until the user accepts (defined) or rejects (deleted) them.
 #pragma once
 
 #include "vesalius/core/markers.h"
@@ -35,6 +39,13 @@ class PickerDocument {
   void removeMarker(std::size_t index);
   // Gives an undefined (named, not yet placed) marker its position and makes it defined.
   void placeNamedMarker(std::size_t index, const Eigen::Vector3d& position);
+  // Makes preview marker `index` defined / deletes it. UsageError if it is not a preview.
+  void acceptPreview(std::size_t index);
+  void rejectPreview(std::size_t index);
+  // Makes every preview marker of confidence >= `minConfidence` defined, all in one undo step; with
+  // minConfidence <= 0 every preview, also those without a confidence. Returns how many.
+  std::size_t acceptPreviews(double minConfidence = 0);
+  std::size_t previewCount() const;
 
   // ---- Dragging: many position updates, one undo step ----
   // Moves marker `index` without recording; finishDrag records one move from where the drag began.
@@ -49,8 +60,8 @@ class PickerDocument {
   // "L-3", "ICP-12", "A-1": the kind's prefix and one more than the highest number in use with it.
   std::string nextLabel(MarkerKind kind) const;
 
-  // The defined, visible marker nearest to `point` within `maxDistance` mm that `accept` (if given)
-  // accepts, e.g. only those on the slice shown.
+  // The placed (defined or preview), visible marker nearest to `point` within `maxDistance` mm that
+  // `accept` (if given) accepts, e.g. only those on the slice shown.
   std::optional<std::size_t> nearestMarker(const Eigen::Vector3d& point, double maxDistance,
                                            const std::function<bool(const Marker&)>& accept = {}) const;
 
@@ -70,20 +81,25 @@ class PickerDocument {
   void save(const std::string& path, bool replace);
 
  private:
-  // One undoable edit of one slot: inserted (no before), erased (no after) or replaced.
+  // One edit of one slot: inserted (no before), erased (no after) or replaced.
   struct Edit {
     std::size_t index = 0;
     std::optional<Marker> before, after;
   };
-  void apply(const Edit& edit, bool forward);
-  void record(const Edit& edit);  // applies, pushes, clears redo, autosaves
+  using Step = std::vector<Edit>;  // one undo step: its edits applied in order, undone in reverse
+  void apply(const Step& step, bool forward);
+  void record(const Step& step);  // applies, pushes, clears redo, autosaves
+  void requirePreview(std::size_t index) const;
   void changed();
 
   MarkerSet markers_;
-  std::vector<Edit> undoStack_, redoStack_;
+  std::vector<Step> undoStack_, redoStack_;
   std::uint64_t revision_ = 0;
   std::optional<std::uint64_t> savedRevision_;  // revision last saved or loaded; none: never saved
   std::string autosavePath_;
 };
+
+// The confidence in a suggestion's description ("confidence 0.812; edge ..."), if it has one.
+std::optional<double> suggestionConfidence(const Marker& marker);
 
 }  // namespace vesalius::picker

@@ -15,6 +15,7 @@ struct PickerOptions {
   std::string landmarkNamesPath;  // one landmark name per line, placed in order
   std::vector<std::string> overlayPaths;  // meshes drawn as contours and 3D surfaces
   std::string labelsPath;         // label map drawn as a translucent colour layer
+  double acceptConfidence = 0;    // Shift+A accepts the suggestions of at least this confidence
   std::string playEventsPath;     // vtkInteractorEventRecorder file played after start
   bool exitAfterPlay = false;
   std::string recordEventsPath;   // records this session's events (for new GUI tests)

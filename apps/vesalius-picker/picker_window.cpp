@@ -66,22 +66,37 @@ void PickerWindow::fitViews() {
 }
 
 void PickerWindow::setStatus(const std::string& cursorLine, const std::string& stateLine) {
-  status_->SetInput((cursorLine + "\n" + stateLine).c_str());
+  const std::string text = cursorLine + "\n" + stateLine;
+  if (status_->GetInput() && text == status_->GetInput()) return;
+  status_->SetInput(text.c_str());
+  statusChanged_ = true;
 }
 
 void PickerWindow::render(const MarkerSet& markers, std::uint64_t markersRevision) {
-  for (auto& slice : slices_) slice->showMarkers(markers);
+  for (auto& slice : slices_) slice->showMarkers(markers, markersRevision);
   if (markersRevision != drawnRevision3d_) {
     view3d_->showMarkers(markers, labelOffset3d_);
     drawnRevision3d_ = markersRevision;
   }
+  bool anySliceChanged = false;
+  for (auto& slice : slices_) {
+    const bool changed = slice->takeChanged();
+    slice->renderer()->SetDraw(changed);
+    anySliceChanged = anySliceChanged || changed;
+  }
+  const bool view3dChanged = view3d_->takeChanged();
+  view3d_->renderer()->SetDraw(view3dChanged || anySliceChanged || statusChanged_);
+  statusChanged_ = false;
   window_->Render();
+  for (auto& slice : slices_) slice->renderer()->SetDraw(true);
+  view3d_->renderer()->SetDraw(true);
 }
 
 void PickerWindow::writeScreenshot(const std::string& path) {
   auto capture = vtkSmartPointer<vtkWindowToImageFilter>::New();
   capture->SetInput(window_);
   capture->ReadFrontBufferOff();
+  capture->ShouldRerenderOff();  // what the last render() left, views it skipped included
   capture->Update();
   writeAtomically(path, WriteOptions{true}, [&](const std::string& temporaryPath) {
     auto png = vtkSmartPointer<vtkPNGWriter>::New();

@@ -33,7 +33,9 @@ class PickerWindow {
   void setWindowLevel(const WindowLevel& windowLevel);
   void fitViews();
   void setStatus(const std::string& cursorLine, const std::string& stateLine);
-  // Redraws markers (3D ones only when `markersRevision` changed) and renders.
+  // Redraws the markers where `markersRevision` or the view changed, and renders the views whose
+  // content changed (all of them when VTK renders by itself, e.g. on expose); the others keep their
+  // pixels in VTK's offscreen frame buffer. The 3D view shows the slices, so it follows any change.
   void render(const MarkerSet& markers, std::uint64_t markersRevision);
   // Writes what the window shows as PNG.
   void writeScreenshot(const std::string& path);
@@ -46,6 +48,7 @@ class PickerWindow {
   vtkSmartPointer<vtkTextActor> status_;
   double labelOffset3d_ = 1;  // mm, from the scan's size
   std::uint64_t drawnRevision3d_ = ~std::uint64_t(0);
+  bool statusChanged_ = true;
 };
 
 }  // namespace vesalius::picker

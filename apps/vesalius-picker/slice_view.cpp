@@ -142,11 +142,13 @@ bool SliceView::isOnSlice(const Eigen::Vector3d& world) const {
 }
 
 void SliceView::zoom(double factor) {
+  changed_ = true;
   vtkCamera* camera = renderer_->GetActiveCamera();
   camera->SetParallelScale(camera->GetParallelScale() / factor);
 }
 
 void SliceView::pan(int dxPixels, int dyPixels) {
+  changed_ = true;
   vtkCamera* camera = renderer_->GetActiveCamera();
   const double* focal = camera->GetFocalPoint();
   const double mm = millimetresPerPixel();
@@ -156,6 +158,7 @@ void SliceView::pan(int dxPixels, int dyPixels) {
 }
 
 void SliceView::fitToScan() {
+  changed_ = true;
   vtkCamera* camera = renderer_->GetActiveCamera();
   camera->SetFocalPoint(extent_.centre.x(), extent_.centre.y(), 0);
   camera->SetPosition(extent_.centre.x(), extent_.centre.y(), kCameraDistance);
@@ -167,17 +170,22 @@ void SliceView::fitToScan() {
 }
 
 void SliceView::setWindowLevel(const WindowLevel& windowLevel) {
+  changed_ = true;
   colours_->SetWindow(windowLevel.window);
   colours_->SetLevel(windowLevel.level);
 }
 
-void SliceView::showMarkers(const MarkerSet& markers) {
+void SliceView::showMarkers(const MarkerSet& markers, std::uint64_t revision) {
+  const auto now = std::make_tuple(revision, depth_, millimetresPerPixel());
+  if (drawnMarkers_ == now) return;
+  drawnMarkers_ = now;
+  changed_ = true;
   std::vector<MarkerGlyph> glyphs;
   for (const Marker& m : markers.markers) {
-    if (m.status != MarkerStatus::Defined || !m.visible || !isOnSlice(m.position)) continue;
+    if (m.status == MarkerStatus::Undefined || !m.visible || !isOnSlice(m.position)) continue;
     Eigen::Vector3d plane = frame_.toPlane(m.position);
     plane.z() = kMarkerHeight;
-    glyphs.push_back({plane, m.kind, m.label});
+    glyphs.push_back({plane, m.kind, m.status == MarkerStatus::Preview, m.label});
   }
   markers_->show(glyphs, kMarkerRadiusPixels * millimetresPerPixel());
 }
@@ -201,6 +209,7 @@ void SliceView::addLabelLayer(vtkImageData* indexSpaceLabels, vtkMatrix4x4* labe
   layer->InterpolateOff();
   layer->SetPosition(0, 0, kLabelLayerHeight);
   renderer_->AddActor(layer);
+  changed_ = true;
   vtkSmartPointer<vtkMatrix4x4> worldToIndex = labelWorldToIndex;
   auto follow = [this, reslice, labelAxes, worldToIndex] {
     vtkMatrix4x4::Multiply4x4(worldToIndex, planeToWorld_, labelAxes);
@@ -225,6 +234,7 @@ void SliceView::addSurfaceContour(vtkPolyData* worldSurface, const Eigen::Vector
   actor->GetProperty()->SetAmbient(1.0);
   actor->GetProperty()->SetDiffuse(0.0);
   renderer_->AddActor(actor);
+  changed_ = true;
   auto follow = [this, plane, actor] {
     const Eigen::Vector3d origin = frame_.toWorld(Eigen::Vector3d(0, 0, depth_));
     plane->SetOrigin(origin.data());
@@ -236,6 +246,7 @@ void SliceView::addSurfaceContour(vtkPolyData* worldSurface, const Eigen::Vector
 }
 
 void SliceView::updateSlicePlane() {
+  changed_ = true;
   Eigen::Matrix4d planeToWorld = Eigen::Matrix4d::Identity();
   planeToWorld.topLeftCorner<3, 3>() = frame_.planeToWorld();
   planeToWorld.topRightCorner<3, 1>() = frame_.normal * depth_;

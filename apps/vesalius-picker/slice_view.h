@@ -19,8 +19,12 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 class vtkActor;
@@ -44,6 +48,8 @@ class SliceView {
   const SliceFrame& frame() const { return frame_; }
   vtkRenderer* renderer() const { return renderer_; }
   bool contains(int displayX, int displayY) const;
+  // Whether anything drawn changed since the last call (the window then skips rendering this view).
+  bool takeChanged() { return std::exchange(changed_, false); }
 
   void stepSlices(int steps);  // positive: toward frame().forward; clamped to the scan
   void showSliceThrough(const Eigen::Vector3d& world);  // depth to the point's, crosshair on it
@@ -58,8 +64,10 @@ class SliceView {
   void fitToScan();
   void setWindowLevel(const WindowLevel& windowLevel);
 
-  // Redraws the markers on this slice, sized a fixed number of pixels.
-  void showMarkers(const MarkerSet& markers);
+  // Redraws the markers on this slice (previews as rings), sized a fixed number of pixels; nothing to do
+  // when the markers' `revision`, the slice and the zoom are those last drawn, so that a view whose
+  // content did not change is not rendered again.
+  void showMarkers(const MarkerSet& markers, std::uint64_t revision);
   // The coloured slice image (for the 3D view) and the map from its plane coordinates to world.
   vtkImageAlgorithm* colouredSlice() const;
   vtkMatrix4x4* planeToWorld() const { return planeToWorld_; }
@@ -89,6 +97,8 @@ class SliceView {
   vtkSmartPointer<vtkTextActor> title_;
   std::vector<std::function<void()>> onPlaneMoved_;  // overlays that follow the slice
   std::unique_ptr<MarkerLayer> markers_;
+  std::optional<std::tuple<std::uint64_t, double, double>> drawnMarkers_;  // revision, depth, mm per pixel
+  bool changed_ = true;
 };
 
 }  // namespace vesalius::picker

@@ -39,18 +39,20 @@ bool View3D::contains(int displayX, int displayY) const {
 }
 
 void View3D::showMarkers(const MarkerSet& markers, double labelOffset) {
+  changed_ = true;
   std::vector<MarkerGlyph> glyphs;
   int labelled = 0;
   for (const Marker& m : markers.markers) {
-    if (m.status != MarkerStatus::Defined || !m.visible) continue;
+    if (m.status == MarkerStatus::Undefined || !m.visible) continue;
     const bool label = m.kind != MarkerKind::IcpMarker && labelled < kMaxLabels;
     labelled += label;
-    glyphs.push_back({m.position, m.kind, label ? m.label : std::string()});
+    glyphs.push_back({m.position, m.kind, m.status == MarkerStatus::Preview, label ? m.label : std::string()});
   }
   markers_->show(glyphs, labelOffset / 1.5);
 }
 
 void View3D::addSurface(vtkPolyData* worldSurface, const Eigen::Vector3d& colour) {
+  changed_ = true;
   auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
   mapper->SetInputData(worldSurface);
   mapper->ScalarVisibilityOff();
@@ -62,6 +64,7 @@ void View3D::addSurface(vtkPolyData* worldSurface, const Eigen::Vector3d& colour
 }
 
 void View3D::rotate(int dxPixels, int dyPixels) {
+  changed_ = true;
   vtkCamera* camera = renderer_->GetActiveCamera();
   camera->Azimuth(-0.5 * dxPixels);
   camera->Elevation(-0.5 * dyPixels);
@@ -70,11 +73,13 @@ void View3D::rotate(int dxPixels, int dyPixels) {
 }
 
 void View3D::zoom(double factor) {
+  changed_ = true;
   renderer_->GetActiveCamera()->Dolly(factor);
   renderer_->ResetCameraClippingRange();
 }
 
 void View3D::fitToScene() {
+  changed_ = true;
   vtkCamera* camera = renderer_->GetActiveCamera();
   camera->SetFocalPoint(0, 0, 0);
   camera->SetPosition(0, -1, 0);  // LPS: -P is anterior

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <memory>
+#include <utility>
 
 class vtkPolyData;
 class vtkRenderWindow;
@@ -25,8 +26,10 @@ class View3D {
 
   vtkRenderer* renderer() const { return renderer_; }
   bool contains(int displayX, int displayY) const;
+  // Whether its camera, markers or surfaces changed since the last call (not the slices it shows).
+  bool takeChanged() { return std::exchange(changed_, false); }
 
-  // All defined markers as spheres; labels, `labelOffset` mm to the right, for the first 200 landmarks
+  // All placed markers as spheres (previews dimmer); labels, `labelOffset` mm to the right, for the first 200 landmarks
   // and attachments (ICP markers come by the hundred and would hide the anatomy).
   void showMarkers(const MarkerSet& markers, double labelOffset);
   void addSurface(vtkPolyData* worldSurface, const Eigen::Vector3d& colour);
@@ -37,6 +40,7 @@ class View3D {
  private:
   vtkSmartPointer<vtkRenderer> renderer_;
   std::unique_ptr<MarkerLayer> markers_;
+  bool changed_ = true;
 };
 
 }  // namespace vesalius::picker

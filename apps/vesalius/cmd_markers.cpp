@@ -9,6 +9,7 @@
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/fit/affine_icp.h"
 #include "vesalius/fit/initial_placement.h"
+#include "vesalius/fit/smooth_displacement.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
@@ -178,8 +179,8 @@ void addSample(CLI::App& markers) {
 
 struct SuggestOptions {
   std::string scan, templ, labels, table, label, markers, out, placedOut;
-  int count = 100, candidatesPerSuggestion = 4, icpPoints = 500;
-  double searchMm = 8.0, sigmaMm = 2.0;
+  int count = 100, candidatesPerSuggestion = 4, icpPoints = 500, rounds = 4, roundPoints = 1000;
+  double searchMm = 8.0, finalSearchMm = 3.0, sigmaMm = 2.0, smoothness = 1.0;
   std::string polarity = "auto";
   std::uint64_t seed = 1;
   CommonOptions common;
@@ -284,7 +285,7 @@ MarkerSet suggestionMarkers(const std::vector<segmentation::NormalEdge>& edges, 
     m.status = MarkerStatus::Preview;  // a proposal until a radiologist accepts it
     m.position = e.position;
     char text[128];
-    std::snprintf(text, sizeof text, "confidence %.3f; edge %.1f per mm, %.1f mm from the placed template",
+    std::snprintf(text, sizeof text, "confidence %.3f; edge %.1f per mm, %.1f mm from the (bent) template",
                   e.confidence, e.strength, std::abs(e.offsetMm));
     m.description = text;
     set.markers.push_back(std::move(m));
@@ -329,9 +330,50 @@ void reportSuggestions(io::Report& report, const SuggestOptions& o, const fit::P
             << " edge; similarity placement RMS " << millimetres(placement.rmsError)
             << " before affine ICP, mean confidence " << confidence / n << ", mean move " << millimetres(moved / n)
             << "\n";
+  if (int(kept.size()) < o.count)
+    std::cout << "fewer than --count " << o.count << ": the scan has an edge with the organ's tissue inside at only "
+              << edges << " candidates\n";
 }
 
-// Places the template, searches the scan along its normals, writes the suggestions and the report.
+// Edges along the normals of `placed` at `count` points spread over its part within the scan.
+struct Search {
+  MatrixX3d candidates;
+  segmentation::NormalEdges found;
+  double area = 0;  // mm², of the placed surface within the scan
+};
+
+Search searchEdges(const Image& scan, const TriMesh& placed, int count, double searchMm, const SuggestOptions& o) {
+  const TriMesh inScan = meshing::withinScan(placed, scan.geometry);
+  if (inScan.F.rows() == 0) throw BadInput(o.templ, "placed on the scan, no triangle lies within it");
+  Search s;
+  s.candidates = meshing::spreadSurfacePoints(inScan, count, o.seed);
+  s.found = segmentation::findNormalEdges(scan, s.candidates, normalsAt(placed, s.candidates),
+                                          {o.sigmaMm, searchMm, 0.25, parsePolarity(o.polarity)});
+  s.area = triangleAreas(inScan.V, inScan.F).sum();
+  return s;
+}
+
+// Active-shape-model rounds (Cootes et al. 1995 §4): search for edges, bend the template onto them by a
+// smooth displacement weighted by their confidence, search again nearer; the search shrinks geometrically
+// from --search-mm to --final-search-mm, which the last search (the suggestions') uses.
+TriMesh bendOntoEdges(const Image& scan, TriMesh placed, const SuggestOptions& o) {
+  for (int r = 0; r < o.rounds; ++r) {
+    const double searchMm = o.searchMm * std::pow(o.finalSearchMm / o.searchMm, double(r) / o.rounds);
+    const Search s = searchEdges(scan, placed, o.roundPoints, searchMm, o);
+    MatrixX3d moves(s.candidates.rows(), 3);
+    Eigen::VectorXd weights(s.candidates.rows());
+    for (Eigen::Index i = 0; i < s.candidates.rows(); ++i) {
+      const segmentation::NormalEdge& e = s.found.edges[std::size_t(i)];
+      moves.row(i) = (e.position - s.candidates.row(i).transpose()).transpose();
+      weights[i] = e.found ? e.confidence : 0.0;
+    }
+    placed.V += fit::smoothDisplacement(placed, s.candidates, moves, weights, {o.smoothness});
+  }
+  return placed;
+}
+
+// Places the template, bends it onto the scan's edges, searches once more, writes the suggestions and the
+// report.
 void runSuggest(const SuggestOptions& o) {
   checkSuggestOptions(o);
   io::Report report("markers suggest");
@@ -339,6 +381,9 @@ void runSuggest(const SuggestOptions& o) {
   report.input("template", o.templ);
   report.parameter("count", o.count);
   report.parameter("search_mm", o.searchMm);
+  report.parameter("final_search_mm", o.finalSearchMm);
+  report.parameter("rounds", o.rounds);
+  report.parameter("smoothness", o.smoothness);
   report.parameter("sigma_mm", o.sigmaMm);
   report.parameter("seed", o.seed);
   const TriMesh templ = readTemplateSurface(o.templ);
@@ -352,21 +397,18 @@ void runSuggest(const SuggestOptions& o) {
     placed.V = placement.transform.apply(templ.V);
     placed = fit::refineAffineIcp(placed, targets);
   }
-  const TriMesh inScan = meshing::withinScan(placed, scan.geometry);
-  if (inScan.F.rows() == 0) throw BadInput(o.templ, "placed on the scan, no triangle lies within it");
-  const MatrixX3d candidates = meshing::spreadSurfacePoints(inScan, o.count * o.candidatesPerSuggestion, o.seed);
-  segmentation::NormalEdges found;
+  Search last;
   {
-    auto timer = report.time("edge search");
-    found = segmentation::findNormalEdges(scan, candidates, normalsAt(placed, candidates),
-                                          {o.sigmaMm, o.searchMm, 0.25, parsePolarity(o.polarity)});
+    auto timer = report.time("bending and edge search");
+    placed = bendOntoEdges(scan, placed, o);
+    last = searchEdges(scan, placed, o.count * o.candidatesPerSuggestion,
+                       o.rounds > 0 ? o.finalSearchMm : o.searchMm, o);
   }
-  const double area = triangleAreas(inScan.V, inScan.F).sum();
-  const std::vector<std::size_t> kept = pickSpread(found.edges, o.count, 0.5 * std::sqrt(area / o.count));
-  const MarkerSet set = suggestionMarkers(found.edges, kept, std::filesystem::path(o.templ).stem().string());
+  const std::vector<std::size_t> kept = pickSpread(last.found.edges, o.count, 0.5 * std::sqrt(last.area / o.count));
+  const MarkerSet set = suggestionMarkers(last.found.edges, kept, std::filesystem::path(o.templ).stem().string());
   io::writeMarkers(o.out, set, o.common.writeOptions(), &scan.geometry);
   if (!o.placedOut.empty()) io::writeTriMesh(o.placedOut, placed, io::MeshWriteOptions{o.common.writeOptions()});
-  reportSuggestions(report, o, placement, found, kept);
+  reportSuggestions(report, o, placement, last.found, kept);
 }
 
 void addSuggest(CLI::App& markers) {
@@ -383,8 +425,14 @@ void addSuggest(CLI::App& markers) {
   cmd->add_option("--out", o->out, "Suggestions: .mrk.json (3D Slicer), .fcsv or .csv (status preview)")
       ->required();
   cmd->add_option("--count", o->count, "Number of suggestions")->check(CLI::Range(1, 2000))->capture_default_str();
-  cmd->add_option("--search-mm", o->searchMm, "Search for an edge this far along each normal, both ways")
+  cmd->add_option("--search-mm", o->searchMm, "Search for an edge this far along each normal, both ways (first round)")
       ->check(CLI::Range(0.5, 50.0))->capture_default_str();
+  cmd->add_option("--final-search-mm", o->finalSearchMm, "Search distance of the last round, after bending")
+      ->check(CLI::Range(0.5, 50.0))->capture_default_str();
+  cmd->add_option("--rounds", o->rounds, "Rounds of edge search and bending the template onto the edges")
+      ->check(CLI::Range(0, 20))->capture_default_str();
+  cmd->add_option("--smoothness", o->smoothness, "Stiffness of the bending (membrane weight per point weight)")
+      ->check(CLI::Range(1e-3, 1e3))->capture_default_str();
   cmd->add_option("--sigma-mm", o->sigmaMm, "Gaussian blur before differentiating, mm")
       ->check(CLI::Range(0.1, 10.0))->capture_default_str();
   cmd->add_option("--polarity", o->polarity, "Intensity change from inside to outside the organ at its edge")
@@ -395,9 +443,11 @@ void addSuggest(CLI::App& markers) {
   cmd->footer(
       "Example:\n  vesalius markers suggest --scan ct.nii.gz --template liver.obj --labels seg.nii.gz "
       "--table labels_total_v1.tsv --label liver --out liver_suggested.mrk.json --count 100\n"
-      "The template is placed by similarity then affine ICP; candidates spread over it move along their normals to\n"
-      "the strongest edge within --search-mm with the organ's tissue inside; the most confident, spread out, are\n"
-      "kept. Each point's description gives its confidence (0..1). See docs/methods/marker-suggestions.md.");
+      "The template is placed by similarity then affine ICP, then bent onto the scan's edges in --rounds rounds of\n"
+      "edge search (from --search-mm down to --final-search-mm) and smooth displacement; candidates spread over it\n"
+      "move along their normals to the strongest edge within --final-search-mm with the organ's tissue inside; the\n"
+      "most confident, spread out, are kept. Each point's description gives its confidence (0..1). See\n"
+      "docs/methods/marker-suggestions.md.");
   cmd->callback([o] { runSuggest(*o); });
 }
 

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 namespace vesalius::picker {
@@ -29,7 +31,7 @@ void expectSameMarkers(const MarkerSet& expected, const MarkerSet& actual) {
     EXPECT_EQ(e.label, a.label) << i;
     EXPECT_EQ(e.kind, a.kind) << i;
     EXPECT_EQ(e.status, a.status) << i;
-    if (e.status == MarkerStatus::Defined) {
+    if (e.status != MarkerStatus::Undefined) {
       EXPECT_LE((e.position - a.position).norm(), 1e-9) << i;
     }
   }
@@ -125,6 +127,132 @@ TEST(PickerDocument, NearestMarkerHonoursRadiusAndFilter) {
   EXPECT_EQ(document.nearestMarker({2, 0, 0}, 0.5), std::nullopt);
   EXPECT_EQ(document.nearestMarker({2, 0, 0}, 5, [](const Marker& m) { return m.kind == MarkerKind::Landmark; }),
             0u);
+}
+
+// Suggestions as `vesalius markers suggest` writes them: ICP markers, status preview, the confidence first
+// in the description; and one marker the user picked.
+MarkerSet suggestions() {
+  MarkerSet set;
+  const double confidences[] = {0.912, 0.48, 0.75, 0.3};
+  for (int i = 0; i < 4; ++i) {
+    Marker m;
+    m.label = "suggested-" + std::to_string(i + 1);
+    m.kind = MarkerKind::IcpMarker;
+    m.status = MarkerStatus::Preview;
+    m.position = Eigen::Vector3d(10.5 * i, -3.25, 7 + i);
+    char text[128];
+    std::snprintf(text, sizeof text, "confidence %.3f; edge %.1f per mm, %.1f mm from the placed template",
+                  confidences[i], 40.0 + i, 1.5);
+    m.description = text;
+    set.markers.push_back(m);
+  }
+  Marker picked;
+  picked.label = "L-1";
+  picked.position = {1, 2, 3};
+  set.markers.push_back(picked);
+  return set;
+}
+
+std::vector<MarkerStatus> statuses(const MarkerSet& set) {
+  std::vector<MarkerStatus> result;
+  for (const Marker& m : set.markers) result.push_back(m.status);
+  return result;
+}
+
+TEST(PickerDocument, SuggestionConfidenceIsReadFromTheDescription) {
+  const MarkerSet set = suggestions();
+  EXPECT_DOUBLE_EQ(suggestionConfidence(set.markers[0]).value(), 0.912);
+  EXPECT_DOUBLE_EQ(suggestionConfidence(set.markers[3]).value(), 0.3);
+  EXPECT_EQ(suggestionConfidence(set.markers[4]), std::nullopt);  // no description
+  Marker garbled;
+  garbled.description = "confidence high";
+  EXPECT_EQ(suggestionConfidence(garbled), std::nullopt);
+}
+
+TEST(PickerDocument, AcceptAndRejectPreviewsUndoable) {
+  const MarkerSet start = suggestions();
+  PickerDocument document(start);
+  using S = MarkerStatus;
+  EXPECT_EQ(document.previewCount(), 4u);
+  EXPECT_THROW(document.acceptPreview(4), UsageError);  // L-1 is not a suggestion
+  EXPECT_THROW(document.rejectPreview(4), UsageError);
+
+  document.acceptPreview(1);
+  EXPECT_EQ(statuses(document.markers()), (std::vector<S>{S::Preview, S::Defined, S::Preview, S::Preview, S::Defined}));
+  EXPECT_EQ(document.marker(1).position, start.markers[1].position);  // accepting does not move it
+  const MarkerSet afterAccept = document.markers();
+  document.rejectPreview(0);
+  ASSERT_EQ(document.size(), 4u);
+  EXPECT_EQ(document.marker(0).label, "suggested-2");
+  EXPECT_EQ(document.previewCount(), 2u);
+  const MarkerSet afterReject = document.markers();
+
+  // Above 0.5: suggested-3 (0.75) only; suggested-4 (0.3) stays a preview.
+  EXPECT_EQ(document.acceptPreviews(0.5), 1u);
+  EXPECT_EQ(statuses(document.markers()), (std::vector<S>{S::Defined, S::Defined, S::Preview, S::Defined}));
+  EXPECT_EQ(document.acceptPreviews(), 1u);  // all that remain
+  EXPECT_EQ(document.previewCount(), 0u);
+  EXPECT_EQ(document.acceptPreviews(), 0u);  // nothing left: no undo step
+  const MarkerSet allAccepted = document.markers();
+
+  ASSERT_TRUE(document.undo());
+  ASSERT_TRUE(document.undo());
+  expectSameMarkers(afterReject, document.markers());
+  ASSERT_TRUE(document.undo());
+  expectSameMarkers(afterAccept, document.markers());
+  ASSERT_TRUE(document.undo());
+  expectSameMarkers(start, document.markers());
+  EXPECT_FALSE(document.undo());
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(document.redo());
+  expectSameMarkers(allAccepted, document.markers());
+}
+
+TEST(PickerDocument, AcceptAllIsOneUndoStep) {
+  PickerDocument document(suggestions());
+  EXPECT_EQ(document.acceptPreviews(), 4u);
+  EXPECT_EQ(document.previewCount(), 0u);
+  ASSERT_TRUE(document.undo());
+  EXPECT_EQ(document.previewCount(), 4u);
+  EXPECT_FALSE(document.canUndo());
+}
+
+TEST(PickerDocument, PreviewsAreGrabbableUndefinedAreNot) {
+  MarkerSet set = suggestions();
+  set.markers[2].status = MarkerStatus::Undefined;
+  PickerDocument document(set);
+  EXPECT_EQ(document.nearestMarker(set.markers[0].position + Eigen::Vector3d(0.5, 0, 0), 1), 0u);
+  EXPECT_EQ(document.nearestMarker(set.markers[2].position, 1), std::nullopt);
+}
+
+// Markups files hold one list per kind (landmarks first), so files are compared by label.
+void expectSameMarkersByLabel(const MarkerSet& expected, const MarkerSet& actual) {
+  ASSERT_EQ(expected.markers.size(), actual.markers.size());
+  for (const Marker& e : expected.markers) {
+    const auto a = std::find_if(actual.markers.begin(), actual.markers.end(),
+                                [&](const Marker& m) { return m.label == e.label; });
+    ASSERT_NE(a, actual.markers.end()) << e.label;
+    EXPECT_EQ(e.kind, a->kind) << e.label;
+    EXPECT_EQ(e.status, a->status) << e.label;
+    EXPECT_EQ(e.description, a->description) << e.label;
+    if (e.status != MarkerStatus::Undefined) EXPECT_LE((e.position - a->position).norm(), 1e-9) << e.label;
+  }
+}
+
+TEST(PickerDocument, SavedAndAutosavedFilesKeepPreviews) {
+  const std::string dir = outputDir("previews");
+  const std::string out = dir + "/suggested-picked.mrk.json";
+  PickerDocument document(suggestions());
+  document.setAutosavePath(autosavePathFor(out));
+  document.acceptPreview(2);
+  document.rejectPreview(3);
+  EXPECT_EQ(statuses(document.markers()), (std::vector<MarkerStatus>{MarkerStatus::Preview, MarkerStatus::Preview,
+                                                                      MarkerStatus::Defined, MarkerStatus::Defined}));
+  expectSameMarkersByLabel(document.markers(), io::readMarkers(autosavePathFor(out)));
+  document.save(out, false);
+  const MarkerSet saved = io::readMarkers(out);
+  expectSameMarkersByLabel(document.markers(), saved);  // previews stay previews, with their confidence
+  for (const Marker& m : saved.markers)
+    if (m.label == "suggested-2") EXPECT_DOUBLE_EQ(suggestionConfidence(m).value(), 0.48);
 }
 
 TEST(PickerDocument, AutosaveAfterEachEditRoundTripsAndSaveRemovesIt) {

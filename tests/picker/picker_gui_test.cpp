@@ -8,6 +8,7 @@
 // centre + (p - viewport centre) * 2 * halfHeight / 400.
 #include "run_command.h"
 
+#include "vesalius/core/grid_sampling.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 namespace vesalius {
@@ -247,6 +249,128 @@ TEST(PickerGui, OverlayContourAndLabelLayerAreDrawn) {
   }
   EXPECT_GT(tinted, 3);
   EXPECT_GT(untouched, 3);
+}
+
+// The point of steepest intensity change within `radius` mm of `click` on the axial line through it
+// along the in-plane image gradient: the gradient from differences over one voxel either side; along
+// the line, every 0.01 mm, the change over one voxel centred there (the interpolated profile is linear
+// between voxel centres, so a shorter difference would have no single peak).
+Eigen::Vector3d steepestEdgeNear(const Image& scan, const Eigen::Vector3d& click, double radius) {
+  const auto value = [&](const Eigen::Vector3d& world) {
+    return sampleTrilinear(scan, scan.geometry.worldToIndex(world));
+  };
+  const double voxel = scan.geometry.spacing.maxCoeff();
+  Eigen::Vector3d direction(value(click + Eigen::Vector3d(voxel, 0, 0)) - value(click - Eigen::Vector3d(voxel, 0, 0)),
+                            value(click + Eigen::Vector3d(0, voxel, 0)) - value(click - Eigen::Vector3d(0, voxel, 0)),
+                            0);
+  direction.normalize();
+  Eigen::Vector3d steepest = click;
+  double steepestChange = -1;
+  for (double t = -radius; t <= radius + 1e-9; t += 0.01) {
+    const Eigen::Vector3d p = click + t * direction;
+    const double change = std::abs(value(p + voxel / 2 * direction) - value(p - voxel / 2 * direction));
+    if (change > steepestChange) {
+      steepestChange = change;
+      steepest = p;
+    }
+  }
+  return steepest;
+}
+
+TEST(PickerGui, SnapMovesAClickToTheBodyEdge) {
+  const std::string dir = freshDir("snap");
+  const std::string out = dir + "/snapped.mrk.json";
+  auto args = playArgs(kEvents + "/snap_to_edge.events", out);
+  args.insert(args.end(), {"--restore", "no"});
+  const auto run = runVesalius(args);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+
+  const Image scan = io::readScan(kScan);
+  const MarkerSet saved = io::readMarkers(out);
+  ASSERT_EQ(saved.markers.size(), 1u);
+  const Eigen::Vector3d snapped = saved.markers[0].position;
+  const Eigen::Vector3d click = clickedWorldPoint(scan.geometry, kAxial, {260, 729}, 0);
+  const Eigen::Vector3d edge = steepestEdgeNear(scan, click, 3);  // the picker's documented snap radius
+  const double voxel = scan.geometry.spacing.maxCoeff();
+  EXPECT_NEAR(snapped.z(), click.z(), 0.01) << "left the slice";
+  EXPECT_GE((snapped - click).norm(), 1.0) << "the click was not moved: snap off?";
+  EXPECT_LE((snapped - edge).norm(), voxel / 2) << "snapped to " << snapped.transpose() << ", the edge is at "
+                                                << edge.transpose() << ", clicked " << click.transpose();
+  // It is the body/air boundary: air (below -800 HU) a voxel outside, tissue (above -300 HU) a voxel inside.
+  const Eigen::Vector3d across = (edge - click).normalized();  // from the click toward the edge
+  const auto value = [&](const Eigen::Vector3d& w) { return sampleTrilinear(scan, scan.geometry.worldToIndex(w)); };
+  const double a = value(snapped + voxel * across), b = value(snapped - voxel * across);
+  EXPECT_LT(std::min(a, b), -800);
+  EXPECT_GT(std::max(a, b), -300);
+}
+
+// Suggestions as `vesalius markers suggest` writes them (preview ICP markers, the confidence first in
+// the description) at display pixels of the axial centre slice, and one landmark the user picked.
+MarkerSet suggestionsAt(const GridGeometry& grid, const std::vector<Eigen::Vector2d>& pixels,
+                        const std::vector<double>& confidences) {
+  MarkerSet set;
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    Marker m;
+    m.label = "suggested-" + std::to_string(i + 1);
+    m.kind = MarkerKind::IcpMarker;
+    m.status = MarkerStatus::Preview;
+    m.position = clickedWorldPoint(grid, kAxial, pixels[i], 0);
+    m.description = "confidence " + std::to_string(confidences[i]) + "; edge 50.0 per mm, 1.0 mm from the template";
+    set.markers.push_back(m);
+  }
+  Marker picked;
+  picked.label = "L-1";
+  picked.position = clickedWorldPoint(grid, kAxial, {200, 700}, 0);
+  set.markers.push_back(picked);
+  return set;
+}
+
+TEST(PickerGui, SuggestionsAreAcceptedAndRejected) {
+  const std::string dir = freshDir("accept_reject_previews");
+  const std::string suggested = dir + "/suggested.mrk.json", out = dir + "/picked.mrk.json";
+  const std::string screenshot = dir + "/window.png";
+  const GridGeometry grid = io::readScan(kScan).geometry;
+  const std::vector<Eigen::Vector2d> pixels{{150, 650}, {250, 650}, {150, 550}, {250, 550}};
+  const MarkerSet start = suggestionsAt(grid, pixels, {0.912, 0.48, 0.75, 0.3});
+  io::writeMarkers(suggested, start);
+  auto args = playArgs(kEvents + "/accept_reject_previews.events", out);
+  args.insert(args.end(), {"--markers", suggested, "--accept-confidence", "0.6", "--restore", "no",
+                           "--screenshot", screenshot});
+  const auto run = runVesalius(args);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+
+  // suggested-2 rejected; suggested-3 rejected, undone, then accepted by Shift+A (0.75 >= 0.6);
+  // suggested-4 (0.3) still a preview, in the saved file too. (Files list landmarks first.)
+  const MarkerSet saved = io::readMarkers(out);
+  const std::map<std::string, MarkerStatus> expected{{"suggested-1", MarkerStatus::Defined},
+                                                     {"suggested-3", MarkerStatus::Defined},
+                                                     {"suggested-4", MarkerStatus::Preview},
+                                                     {"L-1", MarkerStatus::Defined}};
+  ASSERT_EQ(saved.markers.size(), expected.size());
+  for (const Marker& m : saved.markers) {
+    ASSERT_EQ(expected.count(m.label), 1u) << m.label << " should not be in the saved file";
+    EXPECT_EQ(m.status, expected.at(m.label)) << m.label;
+    for (const Marker& original : start.markers) {
+      if (original.label != m.label) continue;
+      EXPECT_EQ(m.kind, original.kind) << m.label;
+      EXPECT_LE((m.position - original.position).norm(), 0.01) << m.label;
+    }
+  }
+
+  // The remaining suggestion is a ring of the ICP colour: cyan around it, not at its centre. The
+  // accepted ones are filled discs; the rejected one is gone.
+  auto png = vtkSmartPointer<vtkPNGReader>::New();
+  png->SetFileName(screenshot.c_str());
+  png->Update();
+  vtkImageData* image = png->GetOutput();
+  const Eigen::Vector3d icpCyan(0, 0.8 * 255, 255);
+  const auto cyanness = [&](int x, int y) { return (pixelColour(image, x, y) - icpCyan).cwiseAbs().maxCoeff(); };
+  for (const auto& [dx, dy] : std::vector<std::pair<int, int>>{{5, 0}, {-5, 0}, {0, 5}, {0, -5}})
+    EXPECT_LE(cyanness(250 + dx, 550 + dy), 3) << "ring of suggested-4 at offset " << dx << "," << dy;
+  EXPECT_GT(cyanness(250, 550), 40) << "suggested-4 should be hollow";
+  EXPECT_LE(cyanness(150, 650), 3) << "accepted suggested-1 should be a filled disc";
+  EXPECT_LE(cyanness(150, 550), 3) << "accepted suggested-3 should be a filled disc";
+  EXPECT_GT(cyanness(250, 650), 40) << "rejected suggested-2 is still drawn";
 }
 
 TEST(PickerGui, BadInputIsOneLineNamingTheFile) {
