@@ -3,6 +3,9 @@
 //            voxels) and, given a skin surface, the thickness at its vertices as a point attribute.
 //   erode    the skin surface moved inward by the thickness, along the forest's paths where given.
 //   texture  the thickness at a skin surface's vertices rasterized into its uv texture.
+//   edit     the fat editor (§6): per-bone fat amounts over bounded biharmonic weights of a reference's
+//            bones, as a texture on the reference skin's uv and a picture of the body.
+#include "bone_fat_amounts.h"
 #include "common.h"
 #include "thickness_input.h"
 
@@ -13,10 +16,12 @@
 #include "vesalius/fat/thickness_texture.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/io/text_file.h"
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/viz/rgb_image.h"
 #include "vesalius/viz/slice_overlay.h"
+#include "vesalius/viz/surface_render.h"
 
 #include <algorithm>
 #include <array>
@@ -24,6 +29,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -400,6 +406,19 @@ void writeTexturePng(const std::string& path, const fat::ThicknessTexture& t, do
   viz::writePng(path, image, write);
 }
 
+// The texture as a float image, W x H x 1; its physical space is the uv square: texel centres at
+// ((x + 0.5) / W, (y + 0.5) / H).
+void writeTextureImage(const std::string& path, const fat::ThicknessTexture& t, const WriteOptions& write) {
+  GridGeometry uvSquare;
+  uvSquare.size = Eigen::Vector3i(t.width, t.height, 1);
+  uvSquare.spacing = Eigen::Vector3d(1.0 / t.width, 1.0 / t.height, 1);
+  uvSquare.origin = Eigen::Vector3d(0.5 / t.width, 0.5 / t.height, 0);
+  Image image(uvSquare, 0.0f);
+  image.values = t.values;
+  image.fileType = PixelType::Float32;
+  io::writeScan(path, image, write);
+}
+
 struct TextureOptions {
   ForestSource source;
   std::string skin, thickness, out, png;
@@ -430,14 +449,7 @@ void runTexture(const TextureOptions& o) {
     tex = fat::rasterizeThickness(mesh, t, options, o.skin);
     progress.end();
   }
-  GridGeometry uvSquare;  // physical space = the uv square: texel centres at ((x + 0.5) / W, (y + 0.5) / H)
-  uvSquare.size = Eigen::Vector3i(o.size, o.size, 1);
-  uvSquare.spacing = Eigen::Vector3d(1.0 / o.size, 1.0 / o.size, 1);
-  uvSquare.origin = Eigen::Vector3d(0.5 / o.size, 0.5 / o.size, 0);
-  Image image(uvSquare, 0.0f);
-  image.values = tex.values;
-  image.fileType = PixelType::Float32;
-  io::writeScan(o.out, image, o.common.writeOptions());
+  writeTextureImage(o.out, tex, o.common.writeOptions());
   report.output("texture", o.out);
   const Stats s = stats(t);
   if (!o.png.empty()) {
@@ -480,15 +492,129 @@ void addTextureCommand(CLI::App& fatCommand) {
       "  vesalius fat erode --skin other_skin_uv.obj --thickness fat.nrrd --out eroded.vtp");
   cmd->callback([o] { runTexture(*o); });
 }
+
+// Faces coloured by the mean thickness of their corners: eight layers, one per colour of the ramp from
+// 0 to `upper` (the last one open), seen from the front.
+void writeBodyPng(const std::string& path, const TriMesh& skin, const Eigen::VectorXd& thickness, double upper,
+                  const WriteOptions& write) {
+  std::array<std::vector<Eigen::Index>, kRamp.size()> faces;
+  for (Eigen::Index f = 0; f < skin.F.rows(); ++f) {
+    const double t = (thickness[skin.F(f, 0)] + thickness[skin.F(f, 1)] + thickness[skin.F(f, 2)]) / 3;
+    const double x = upper > 0 ? t / upper * double(kRamp.size()) : 0.0;
+    faces[std::min(kRamp.size() - 1, std::size_t(std::max(0.0, x)))].push_back(f);
+  }
+  std::vector<TriMesh> meshes;
+  std::vector<viz::Rgb> colours;
+  for (std::size_t b = 0; b < faces.size(); ++b) {
+    if (faces[b].empty()) continue;
+    TriMesh m;
+    m.V = skin.V;
+    m.F.resize(Eigen::Index(faces[b].size()), 3);
+    for (std::size_t i = 0; i < faces[b].size(); ++i) m.F.row(Eigen::Index(i)) = skin.F.row(faces[b][i]);
+    meshes.push_back(std::move(m));
+    colours.push_back(kRamp[b]);
+  }
+  std::vector<viz::SurfaceLayer> layers;
+  for (std::size_t l = 0; l < meshes.size(); ++l) layers.push_back({&meshes[l], colours[l], 1.0});
+  viz::SurfaceRenderOptions options;
+  options.write = write;
+  viz::writeSurfacesPng(layers, path, options);
+}
+
+struct EditOptions {
+  std::string reference, amounts, out, outMesh, png, bodyPng;
+  int size = 1024;
+  BoneFatSettings fat;
+  CommonOptions common;
+};
+
+void runEdit(const EditOptions& o) {
+  if (o.out.empty() && o.outMesh.empty()) throw UsageError("fat edit: give --out, --out-mesh or both");
+  if (!o.png.empty() && o.out.empty()) throw UsageError("fat edit: --png is a picture of the texture of --out");
+  if (!o.bodyPng.empty() && !viz::canRenderSurfaces())
+    throw UsageError("fat edit: --body-png needs a display (run under xvfb-run)");
+  checkOutputs({o.out, o.outMesh, o.png, o.bodyPng, o.common.report}, {o.amounts}, o.common.force);
+  io::Report report("fat edit");
+  report.input("reference", o.reference);
+  report.input("amounts", o.amounts);
+  Progress progress(o.common.progressStyle());
+  TriMesh skin;
+  Eigen::VectorXd t;
+  {
+    const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
+    progress.begin("bone weights", "bounded biharmonic weights of the bones on a voxel grid");
+    t = boneFatAtSkin(reference, o.reference, o.amounts, o.fat, report);
+    progress.end();
+    skin = reference.skin;
+  }
+  const Stats s = stats(t);
+  if (!o.outMesh.empty()) {
+    skin.vertexAttributes.real["fat_thickness"] = t;
+    io::writeTriMesh(o.outMesh, skin, io::MeshWriteOptions{o.common.writeOptions()});
+    report.output("mesh", o.outMesh);
+  }
+  if (!o.out.empty()) {
+    fat::ThicknessTextureOptions options;
+    options.width = options.height = o.size;
+    const std::string skinPath = (std::filesystem::path(o.reference) / "skin.obj").string();
+    const fat::ThicknessTexture tex = fat::rasterizeThickness(skin, t, options, skinPath);
+    writeTextureImage(o.out, tex, o.common.writeOptions());
+    report.output("texture", o.out);
+    if (!o.png.empty()) {
+      writeTexturePng(o.png, tex, s.max, o.common.writeOptions());
+      report.output("png", o.png);
+    }
+  }
+  if (!o.bodyPng.empty()) {
+    writeBodyPng(o.bodyPng, skin, t, s.max, o.common.writeOptions());
+    report.output("body_png", o.bodyPng);
+  }
+  report.metric("vertex_thickness", toJson(s));
+  std::cout << (o.out.empty() ? o.outMesh : o.out) << ": fat from bone amounts at " << skin.V.rows()
+            << " skin vertices: median " << s.median << " mm, 5-95 % " << s.p05 << "-" << s.p95 << " mm, max " << s.max
+            << " mm\n";
+  o.common.finish(report);
+}
+
+void addEditCommand(CLI::App& fatCommand) {
+  auto o = std::make_shared<EditOptions>();
+  CLI::App* cmd = fatCommand.add_subcommand(
+      "edit", "Fat editor: per-bone fat amounts over bounded biharmonic weights of a reference's bones (seed 000 §6)");
+  cmd->add_option("--reference", o->reference, "Reference anatomy folder (from `vesalius reference`)")->required();
+  cmd->add_option("--amounts", o->amounts,
+                  "JSON object of bone (group) names and fat amounts, e.g. {\"pelvis\": 0.4, \"torso\": 0}; an amount "
+                  "is a fraction of --max-thickness")
+      ->required();
+  cmd->add_option("--default-amount", o->fat.defaultAmount, "Amount of the bones the file does not name")->capture_default_str();
+  cmd->add_option("--max-thickness", o->fat.maxThicknessMm, "Thickness an amount of 1 gives (mm)")->capture_default_str();
+  cmd->add_option("--voxel-size", o->fat.voxelSizeMm, "Voxel size of the weights' grid (mm)")->capture_default_str();
+  cmd->add_option("--out", o->out,
+                  "Float texture on the reference skin's uv (.nrrd, .nii.gz, .mha), W x H x 1, mm; for `transfer --fat`");
+  cmd->add_option("--size", o->size, "Texture width and height in texels")->capture_default_str()->check(CLI::Range(1, 16384));
+  cmd->add_option("--png", o->png, "Picture of the texture (v up)");
+  cmd->add_option("--out-mesh", o->outMesh,
+                  "The reference skin with point attribute fat_thickness (mm; .vtp, .vtk); for `transfer --fat` "
+                  "when the skin has no uv");
+  cmd->add_option("--body-png", o->bodyPng, "Picture of the body coloured by thickness, from the front; needs a display");
+  addCommonOptions(*cmd, o->common);
+  cmd->footer(
+      "Example:\n  echo '{\"pelvis\": 0.4, \"torso\": 0}' > amounts.json\n"
+      "  vesalius fat edit --reference ref --amounts amounts.json --out fat.nrrd --png fat.png --body-png body.png\n"
+      "  vesalius transfer --reference ref --target-skin body.obj --fat fat.nrrd --out target\n"
+      "Bones are the reference's bone groups (a bone without a group by its name); see docs/methods/fat-thickness.md.");
+  cmd->callback([o] { runEdit(*o); });
+}
+
 }  // namespace
 
 void addFatCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
-      "fat", "Subcutaneous fat: thickness from segmented skin and fat, erosion, texture (seed 000 §5)");
+      "fat", "Subcutaneous fat: thickness from segmented skin and fat, erosion, texture (seed 000 §5), editor (§6)");
   cmd->require_subcommand(1);
   addForestCommand(*cmd);
   addErodeCommand(*cmd);
   addTextureCommand(*cmd);
+  addEditCommand(*cmd);
 }
 
 }  // namespace vesalius::cli

@@ -1,6 +1,7 @@
 // vesalius transfer: a reference anatomy carried into a target body surface (seed 000): skin registration
 // (§4), erosion by the fat thickness (§5), Laplace interpolation (§7), bone registration (§8), final
 // interpolation; with the anatomical rules measured in the report.
+#include "bone_fat_amounts.h"
 #include "common.h"
 #include "thickness_input.h"
 
@@ -28,7 +29,7 @@ namespace vesalius::cli {
 namespace {
 
 struct TransferOptions {
-  std::string reference, targetSkin, out, space = "lps", png, fat = "0";
+  std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts;
   double voxelSize = 3;
   int registrationIterations = transfer::SkinRegistrationOptions{}.iterations;
   CommonOptions common;
@@ -188,12 +189,19 @@ void runTransfer(const TransferOptions& o) {
   io::Report report("transfer");
   report.input("reference", o.reference);
   report.input("target_skin", o.targetSkin);
-  report.parameter("fat", o.fat);
+  report.parameter("fat", o.fatAmounts.empty() ? o.fat : o.fatAmounts);
   report.parameter("voxel_size_mm", o.voxelSize);
   report.parameter("registration_iterations", o.registrationIterations);
   Progress progress(o.common.progressStyle());
   const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
   const TriMesh target = readTarget(o);
+  // The fat first, so that a bad file fails before the registration's work. --fat-amounts takes `fat
+  // edit`'s defaults: 15 mm voxels, 50 mm per unit amount, 0 for the bones it does not name.
+  std::string fatKind = "bone amounts";
+  const Eigen::VectorXd fat = o.fatAmounts.empty()
+                                  ? readThickness(o.fat, reference.skin, o.reference + "/" + "skin.obj", fatKind)
+                                  : boneFatAtSkin(reference, o.reference, o.fatAmounts, BoneFatSettings{}, report);
+  report.parameter("fat_kind", fatKind);
 
   transfer::SkinRegistrationOptions registrationOptions;
   registrationOptions.iterations = o.registrationIterations;
@@ -208,9 +216,6 @@ void runTransfer(const TransferOptions& o) {
 
   TriMesh eroded = reference.skin;
   eroded.V = registered.V;
-  std::string fatKind;
-  const Eigen::VectorXd fat = readThickness(o.fat, reference.skin, o.reference + "/" + "skin.obj", fatKind);
-  report.parameter("fat_kind", fatKind);
   if (fat.maxCoeff() > 0) {
     auto timer = report.time("erosion");
     const Eigen::VectorXd thickness = withoutCut(reference, fat);
@@ -273,11 +278,15 @@ void addTransferCommand(CLI::App& app) {
   cmd->add_option("--target-skin", o->targetSkin, "Closed body surface of the target (.obj .stl .vtp .ply .vtk)")->required();
   cmd->add_option("--space", o->space, "Space of the target skin: lps (mm) or makehuman (decimetres, +Y up)")
       ->capture_default_str();
-  cmd->add_option("--fat", o->fat,
+  CLI::Option* fatOption = cmd->add_option("--fat", o->fat,
                   "Subcutaneous fat of the target, eroded from its skin: a thickness in mm, a texture on the "
                   "reference skin's uv (from 'fat texture'), a mesh with fat_thickness or a text file per "
                   "reference skin vertex")
       ->capture_default_str();
+  cmd->add_option("--fat-amounts", o->fatAmounts,
+                  "Fat from per-bone amounts instead (seed 000 §6): a JSON object as `fat edit --amounts` takes it, "
+                  "with that command's defaults")
+      ->excludes(fatOption);
   cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the displacement field's grid, mm")->capture_default_str();
   cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
       ->capture_default_str();

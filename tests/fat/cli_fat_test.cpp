@@ -4,6 +4,8 @@
 // from the anterior midline), the thickness on a skin surface, TotalSegmentator's own fat mask, bad input.
 // `vesalius fat erode` and `fat texture` on the 30-slice crop: the eroded body surface against the inner
 // boundary of TotalSegmentator's subcutaneous fat, a thickness texture read back and used for erosion.
+// `vesalius fat edit` (§6) on the full-body reference with MakeHuman's uv: fat from the pelvis only is
+// largest near it and nil on the head, doubling the amounts doubles the texture, bad amounts files.
 #include "run_command.h"
 
 #include "vesalius/core/triangle_tree.h"
@@ -12,6 +14,7 @@
 #include "vesalius/fat/thickness_texture.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -501,6 +505,178 @@ TEST(CliFatErode, BadThicknessAndMissingUvAreOneLineErrors) {
   EXPECT_EQ(h.exitCode, 0);
   expectContains(h.out, "vesalius fat erode --skin");
   expectContains(runVesalius({"fat", "texture", "--help"}).out, "vesalius fat texture --skin");
+}
+
+// The full-body reference (MakeHuman's neutral skin, Rajagopal's OpenSim bones placed by seed 004) with
+// MakeHuman's uv atlas on its skin: base.obj's "body" group holds the shapes' quads in the same order.
+const std::string& fullBodyReference() {
+  static const std::string path = [] {
+    const std::string body = std::string(VESALIUS_TESTDATA) + "/body/", plain = outputDir() + "/full_body_plain";
+    const CommandResult r = runVesalius({"reference", "full-body", "--skin", body + "shapes/mh_neutral_body.obj",
+                                         "--skeleton", body + "default.mhskel", "--model",
+                                         std::string(VESALIUS_TESTDATA) + "/skeleton-opensim/Rajagopal2016.osim",
+                                         "--out", plain, "--force", "--progress", "none"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    ReferenceAnatomy reference = io::readReferenceAnatomy(plain);
+    const TriMesh base = io::readTriMesh(body + "base.obj");
+    const Eigen::MatrixXi& group = base.faceAttributes.integer.at("group");
+    reference.skin.UV = base.UV;
+    reference.skin.FUV.resize(reference.skin.F.rows(), 3);
+    Eigen::Index f = 0;
+    for (Eigen::Index b = 0; b < base.F.rows(); ++b)
+      if (group(b, 0) == 0 && f < reference.skin.F.rows()) reference.skin.FUV.row(f++) = base.FUV.row(b);
+    EXPECT_EQ(f, reference.skin.F.rows());
+    const std::string p = outputDir() + "/full_body";
+    io::writeReferenceAnatomy(p, reference, WriteOptions{true});
+    return p;
+  }();
+  return path;
+}
+
+std::string writeAmounts(const std::string& name, const std::string& json) {
+  const std::string path = outputDir() + "/" + name + ".json";
+  std::ofstream(path) << json;
+  return path;
+}
+
+// `fat edit` with these amounts on coarse voxels (20 mm): the texture and the skin with fat_thickness.
+struct EditRun {
+  Image texture;
+  Eigen::VectorXd thickness;
+  nlohmann::json report;
+};
+
+EditRun edit(const std::string& name, const std::string& amounts) {
+  const std::string out = outputDir() + "/" + name;
+  const CommandResult r = runVesalius({"fat", "edit", "--reference", fullBodyReference(), "--amounts",
+                                       writeAmounts(name, amounts), "--voxel-size", "20", "--size", "256", "--out",
+                                       out + ".nrrd", "--png", out + ".png", "--out-mesh", out + ".vtp", "--report",
+                                       out + ".report.json", "--force", "--progress", "none"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  std::cout << r.out;
+  EditRun run;
+  run.texture = io::readScan(out + ".nrrd");
+  run.thickness = io::readTriMesh(out + ".vtp").vertexAttributes.real.at("fat_thickness").col(0);
+  std::ifstream in(out + ".report.json");
+  run.report = nlohmann::json::parse(in);
+  return run;
+}
+
+const std::string kPelvisAmounts = R"({"pelvis": 0.4, "torso": 0})";
+
+TEST(CliFatEdit, PelvisFatIsLargestNearThePelvisAndNilOnTheHead) {
+  const EditRun run = edit("pelvis", kPelvisAmounts);
+  const ReferenceAnatomy reference = io::readReferenceAnatomy(fullBodyReference());
+  const MatrixX3d& V = reference.skin.V;
+  ASSERT_EQ(run.thickness.size(), V.rows());
+  // The bounds of the weights: 0 <= thickness <= 0.4 · 50 mm.
+  EXPECT_GE(run.thickness.minCoeff(), 0.0);
+  EXPECT_LE(run.thickness.maxCoeff(), 20.0 + 1e-9);
+  // The head: skin above the chin, 200 mm below the top of the skull (LPS: superior is +z).
+  const double top = V.col(2).maxCoeff();
+  double head = 0;
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (V(v, 2) > top - 200) head = std::max(head, run.thickness[v]);
+  // The largest thickness: at a vertex near the pelvis bones (hips and sacrum).
+  MatrixX3d pelvisV(0, 3);
+  MatrixX3i pelvisF(0, 3);
+  for (const ReferenceTissue& t : reference.tissues) {
+    if (t.group != "pelvis") continue;
+    pelvisF.conservativeResize(pelvisF.rows() + t.mesh.F.rows(), 3);
+    pelvisF.bottomRows(t.mesh.F.rows()) = t.mesh.F.array() + int(pelvisV.rows());
+    pelvisV.conservativeResize(pelvisV.rows() + t.mesh.V.rows(), 3);
+    pelvisV.bottomRows(t.mesh.V.rows()) = t.mesh.V;
+  }
+  Eigen::Index largest = 0;
+  run.thickness.maxCoeff(&largest);
+  const double fromPelvis = std::sqrt(TriangleTree(pelvisV, pelvisF).closest(Eigen::Vector3d(V.row(largest))).squaredDistance);
+  std::cout << "pelvis 0.4: largest " << run.thickness.maxCoeff() << " mm, " << fromPelvis
+            << " mm from the pelvis; head at most " << head << " mm\n";
+  EXPECT_LT(head, 0.2);
+  EXPECT_GT(run.thickness.maxCoeff(), 15.0);
+  EXPECT_LT(fromPelvis, 120.0);
+  // Every bone's QP met its KKT conditions.
+  for (const nlohmann::json& bone : run.report["metrics"]["bone_weights"]["bones"])
+    EXPECT_LE(bone["kkt_residual"].get<double>(), 1e-10) << bone["name"];
+  // The texture reads back the vertices' thickness at their uv.
+  fat::ThicknessTexture texture;
+  texture.width = run.texture.geometry.size.x(), texture.height = run.texture.geometry.size.y();
+  texture.values = run.texture.values;
+  const Eigen::VectorXd back = fat::sampleTextureAtVertices(texture, reference.skin);
+  std::vector<double> error;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) error.push_back(std::abs(back[v] - run.thickness[v]));
+  std::cout << "texture read back: median error " << quantile(error, 0.5) << " mm, 95 % " << quantile(error, 0.95) << " mm\n";
+  EXPECT_LT(quantile(error, 0.5), 0.05);
+}
+
+TEST(CliFatEdit, DoublingTheAmountsDoublesTheTexture) {
+  const std::string amounts = R"({"pelvis": 0.4, "torso": 0.1, "femur_r": 0.25, "hand_l": 0.3})";
+  const std::string doubled = R"({"pelvis": 0.8, "torso": 0.2, "femur_r": 0.5, "hand_l": 0.6})";
+  const EditRun a = edit("amounts", amounts), b = edit("doubled", doubled);
+  ASSERT_EQ(a.texture.values.size(), b.texture.values.size());
+  double worst = 0, largest = 0;
+  for (std::size_t t = 0; t < a.texture.values.size(); ++t) {
+    worst = std::max(worst, std::abs(double(b.texture.values[t]) - 2.0 * a.texture.values[t]));
+    largest = std::max(largest, double(b.texture.values[t]));
+  }
+  std::cout << "doubled: largest texel " << largest << " mm, worst |t2 - 2 t1| " << worst << " mm\n";
+  EXPECT_GT(largest, 10.0);
+  EXPECT_LE(worst, 1e-6 * largest);
+  EXPECT_LT((b.thickness - 2 * a.thickness).cwiseAbs().maxCoeff(), 1e-6 * largest);
+}
+
+// The body coloured by thickness: a picture with a display (xvfb-run), a one-line usage error without.
+TEST(CliFatEdit, BodyPictureOrAClearRefusal) {
+  const std::string png = outputDir() + "/body.png";
+  fs::remove(png);
+  const CommandResult r = runVesalius({"fat", "edit", "--reference", fullBodyReference(), "--amounts",
+                                       writeAmounts("body", kPelvisAmounts), "--voxel-size", "20", "--out-mesh",
+                                       outputDir() + "/body.vtp", "--body-png", png, "--force", "--progress", "none"});
+  const char* display = std::getenv("DISPLAY");
+  if (display && *display) {
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_GT(fs::file_size(png), 10000u);
+  } else {
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "vesalius: fat edit: --body-png needs a display (run under xvfb-run)\n");
+    EXPECT_FALSE(fs::exists(png));
+  }
+}
+
+TEST(CliFatEdit, BadAmountsAreOneLineErrors) {
+  const std::string out = outputDir() + "/bad.nrrd";
+  const auto run = [&](const std::string& name, const std::string& json) {
+    return runVesalius({"fat", "edit", "--reference", fullBodyReference(), "--amounts", writeAmounts(name, json),
+                        "--out", out, "--force", "--progress", "none"});
+  };
+  const std::string file = outputDir() + "/unknown.json";
+  const CommandResult unknown = run("unknown", R"({"pelvis": 0.4, "skull": 0})");
+  EXPECT_EQ(unknown.exitCode, 3);
+  expectContains(unknown.err, "vesalius: " + file + ": no bone or bone group 'skull' in the reference (its bones: pelvis,");
+  EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1);
+  const CommandResult member = run("member", R"({"r_pelvis": 0.4})");
+  EXPECT_EQ(member.exitCode, 3);
+  EXPECT_EQ(member.err, "vesalius: " + outputDir() + "/member.json: 'r_pelvis' is one bone of the group 'pelvis'; give "
+                        "the group's amount\n");
+  for (const auto& [name, json] : std::vector<std::pair<std::string, std::string>>{
+           {"syntax", R"({"pelvis": 0.4,)"}, {"array", "[0.4]"}, {"negative", R"({"pelvis": -1})"}, {"text", R"({"pelvis": "a"})"}}) {
+    const CommandResult r = run(name, json);
+    EXPECT_EQ(r.exitCode, 3) << name;
+    expectContains(r.err, "vesalius: " + outputDir() + "/" + name + ".json: ");
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  // The transfer checks its amounts before any registration.
+  const CommandResult transfer = runVesalius({"transfer", "--reference", fullBodyReference(), "--target-skin",
+                                              fullBodyReference() + "/skin.obj", "--fat-amounts", file, "--out",
+                                              outputDir() + "/no_transfer", "--progress", "none"});
+  EXPECT_EQ(transfer.exitCode, 3);
+  expectContains(transfer.err, "no bone or bone group 'skull'");
+  const CommandResult both = runVesalius({"transfer", "--reference", fullBodyReference(), "--target-skin",
+                                          fullBodyReference() + "/skin.obj", "--fat", "5", "--fat-amounts", file,
+                                          "--out", outputDir() + "/no_transfer", "--progress", "none"});
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_FALSE(fs::exists(outputDir() + "/no_transfer"));
 }
 
 }  // namespace
