@@ -4,8 +4,11 @@
 //   1. bone weights (one factorization, four right-hand sides);
 //   2. CoR centres, clustered against brute force; brute force is timed on an even sample of the vertices
 //      (its cost per vertex does not depend on which) and scaled to the whole mesh;
-//   3. one skinning frame of the tet mesh with LBS, DQS and CoR (the seed's Table 2 compares their rates);
-//   4. mapping 1.3M tissue points into the tet mesh (the seed's §3.4 count) and carrying them posed;
+//   3. mapping 1.3M tissue points into the tet mesh (the seed's §3.4 count) and carrying them posed, against
+//      the previous method in the same run: each point queried in the given order, and the whole carry
+//      loop of the previous code;
+//   4. one skinning frame, tet mesh plus tissue points, with LBS, DQS and CoR (the seed's Table 2 compares
+//      their rates), against the previous per-vertex kernels (kept below as the baseline);
 //   5. CoR centres again with many bones (the MakeHuman rig has 50): the bar at 3 cells per unit with its
 //      bone cores cut into pieces, 26 bones, so that a vertex feels many bone pairs.
 // Usage: bench_posing [cells per unit, default 6] [brute-force sample, default 24].
@@ -18,12 +21,17 @@
 #include "vesalius/posing/linear_blend_skinning.h"
 #include "vesalius/posing/rotation_centers.h"
 #include "vesalius/core/tet_embedding.h"
+#include "vesalius/core/tet_locator.h"
+
+#include <tbb/parallel_for.h>
 
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -79,30 +87,172 @@ void centres(const test::BoneBar& bar, const Eigen::MatrixXd& W, MatrixX3d& clus
               tClustered, tSample, sampleSize, tBrute, tBrute / 3600, tBrute / tClustered, worst / size);
 }
 
-void skinning(const test::BoneBar& bar, const Eigen::MatrixXd& W, const MatrixX3d& C) {
-  const auto pose = test::middleJointPose(bar, Eigen::Vector3d::UnitZ(), 100.0);
-  const MatrixX3d& V = bar.mesh.V;
-  const double lbs = secondsPerFrame([&] { posing::linearBlendSkinning(V, W, pose); });
-  const double dqs = secondsPerFrame([&] { posing::dualQuaternionSkinning(V, W, pose); });
-  const double cor = secondsPerFrame([&] { posing::corSkinning(V, W, C, pose); });
-  std::printf("| one frame (%ld vertices) | LBS %.1f ms (%.0f fps) | DQS %.1f ms (%.0f fps) | CoR %.1f ms (%.0f fps) |\n",
-              long(V.rows()), 1e3 * lbs, 1 / lbs, 1e3 * dqs, 1 / dqs, 1e3 * cor, 1 / cor);
+// The kernels before blocking (blending.h), vertex by vertex with Eigen types, as the speed baseline.
+namespace previous {
+
+double sign(const Eigen::Vector4d& q, const Eigen::Vector4d& pivot) { return q.dot(pivot) < 0.0 ? -1.0 : 1.0; }
+
+std::vector<Eigen::Vector4d> quaternions(const std::vector<Eigen::Isometry3d>& T) {
+  std::vector<Eigen::Vector4d> q;
+  for (const auto& t : T) q.push_back(Eigen::Quaterniond(t.rotation()).normalized().coeffs());
+  return q;
 }
 
-void mapping(const test::BoneBar& bar, const Eigen::MatrixXd& W) {
+template <class Vertex>
+MatrixX3d perVertex(Eigen::Index n, Vertex vertex) {
+  MatrixX3d posed(n, 3);
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, n, 1024), [&](const tbb::blocked_range<Eigen::Index>& r) {
+    for (Eigen::Index i = r.begin(); i < r.end(); ++i) posed.row(i) = vertex(i).transpose();
+  });
+  return posed;
+}
+
+MatrixX3d lbs(const MatrixX3d& V, const Eigen::MatrixXd& W, const std::vector<Eigen::Isometry3d>& T) {
+  return perVertex(V.rows(), [&](Eigen::Index i) -> Eigen::Vector3d {
+    Eigen::Matrix<double, 3, 4> blended = Eigen::Matrix<double, 3, 4>::Zero();
+    for (Eigen::Index j = 0; j < W.cols(); ++j)
+      if (W(i, j) != 0.0) blended += W(i, j) * T[std::size_t(j)].affine();
+    return blended.leftCols<3>() * V.row(i).transpose() + blended.col(3);
+  });
+}
+
+MatrixX3d dqs(const MatrixX3d& V, const Eigen::MatrixXd& W, const std::vector<Eigen::Isometry3d>& T) {
+  const std::vector<Eigen::Vector4d> real = quaternions(T);
+  std::vector<Eigen::Vector4d> dual;
+  for (std::size_t j = 0; j < T.size(); ++j) {
+    const Eigen::Vector3d t = T[j].translation();
+    dual.push_back(0.5 * (Eigen::Quaterniond(0.0, t.x(), t.y(), t.z()) * Eigen::Quaterniond(real[j])).coeffs());
+  }
+  return perVertex(V.rows(), [&](Eigen::Index i) -> Eigen::Vector3d {
+    Eigen::Index heaviest = 0;
+    W.row(i).maxCoeff(&heaviest);
+    Eigen::Vector4d b0 = Eigen::Vector4d::Zero(), be = Eigen::Vector4d::Zero();
+    for (Eigen::Index j = 0; j < W.cols(); ++j) {
+      if (W(i, j) == 0.0) continue;
+      const double w = W(i, j) * sign(real[std::size_t(j)], real[std::size_t(heaviest)]);
+      b0 += w * real[std::size_t(j)];
+      be += w * dual[std::size_t(j)];
+    }
+    const double norm = b0.norm();
+    const Eigen::Vector4d c0 = b0 / norm, ce = be / norm;
+    const Eigen::Vector3d r = c0.head<3>(), d = ce.head<3>();
+    return Eigen::Quaterniond(c0) * Eigen::Vector3d(V.row(i).transpose()) + 2.0 * (c0.w() * d - ce.w() * r + r.cross(d));
+  });
+}
+
+MatrixX3d cor(const MatrixX3d& V, const Eigen::MatrixXd& W, const MatrixX3d& C, const std::vector<Eigen::Isometry3d>& T) {
+  const std::vector<Eigen::Vector4d> q = quaternions(T);
+  return perVertex(V.rows(), [&](Eigen::Index i) -> Eigen::Vector3d {
+    Eigen::Index heaviest = 0;
+    W.row(i).maxCoeff(&heaviest);
+    Eigen::Vector4d blend = Eigen::Vector4d::Zero();
+    Eigen::Matrix<double, 3, 4> lbs = Eigen::Matrix<double, 3, 4>::Zero();
+    for (Eigen::Index j = 0; j < W.cols(); ++j) {
+      if (W(i, j) == 0.0) continue;
+      blend += W(i, j) * sign(q[std::size_t(j)], q[std::size_t(heaviest)]) * q[std::size_t(j)];
+      lbs += W(i, j) * T[std::size_t(j)].affine();
+    }
+    const Eigen::Matrix3d R = Eigen::Quaterniond(blend.normalized()).toRotationMatrix();
+    const Eigen::Vector3d p = C.row(i).transpose();
+    return R * V.row(i).transpose() + lbs.leftCols<3>() * p + lbs.col(3) - R * p;
+  });
+}
+
+MatrixX3d carry(const TetEmbedding& e, const MatrixX3d& deformedV) {
+  return perVertex(e.corners.rows(), [&](Eigen::Index p) -> Eigen::Vector3d {
+    Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += e.barycentric(p, k) * deformedV.row(e.corners(p, k));
+    return x.transpose();
+  });
+}
+
+// Every point queried in the order given, and its weights computed again in its tet.
+TetEmbedding embed(const MatrixX3d& V, const MatrixX4i& T, const MatrixX3d& P) {
+  const TetLocator locator(V, T);
+  TetEmbedding e{Eigen::VectorXi(P.rows()), MatrixX4i(P.rows(), 4), Eigen::Matrix<double, Eigen::Dynamic, 4>(P.rows(), 4)};
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, P.rows(), 256), [&](const tbb::blocked_range<Eigen::Index>& r) {
+    for (Eigen::Index p = r.begin(); p < r.end(); ++p) {
+      const Eigen::Vector3d x = P.row(p).transpose();
+      const int t = locator.locateOrNearest(x).tet;
+      e.tet[p] = t;
+      e.corners.row(p) = T.row(t);
+      e.barycentric.row(p) = locator.barycentric(t, x).transpose();
+    }
+  });
+  return e;
+}
+
+}  // namespace previous
+
+// The embedding of the same points reordered by tet, as a mesh's vertices come (spatially coherent).
+TetEmbedding sortedByTet(const TetEmbedding& e) {
+  std::vector<int> order(std::size_t(e.tet.size()));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return e.tet[a] < e.tet[b]; });
+  return {e.tet(order), e.corners(order, Eigen::all), e.barycentric(order, Eigen::all)};
+}
+
+struct Embedded {
+  TetEmbedding random, coherent;  // tissue points in random order, and sorted by tet
+};
+
+Embedded mapping(const test::BoneBar& bar) {
   // Tissue points spread over the bar's box grown by 0.1 on every side, so that about 5 % fall outside
   // (the seed met 4.6 %).
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> x(-0.1, 48.1), yz(-0.1, 8.1);
   MatrixX3d P(1300000, 3);
   for (Eigen::Index p = 0; p < P.rows(); ++p) P.row(p) << x(rng), yz(rng), yz(rng);
-  TetEmbedding e;
+  TetEmbedding e, before;
   const double tEmbed = bench::seconds([&] { e = embedInTets(bar.mesh.V, bar.mesh.T, P); });
-  const MatrixX3d posedV = posing::linearBlendSkinning(bar.mesh.V, W, test::middleJointPose(bar, Eigen::Vector3d::UnitZ(), 100.0));
-  const double tApply = bench::seconds([&] { e.apply(posedV); });
+  const double tBefore = bench::seconds([&] { before = previous::embed(bar.mesh.V, bar.mesh.T, P); });
   const long outside = long((e.barycentric.rowwise().minCoeff().array() < -1e-9).count());
-  std::printf("| mapping %ld points (%.1f %% outside) into %ld tets | embed %.1f s | carry posed %.0f ms |\n",
-              long(P.rows()), 100.0 * double(outside) / double(P.rows()), long(bar.mesh.T.rows()), tEmbed, 1e3 * tApply);
+  const long differ = long((e.tet.array() != before.tet.array()).count());
+  const double weights = (e.barycentric - before.barycentric).cwiseAbs().maxCoeff();
+  std::printf("| mapping %ld points (%.1f %% outside) into %ld tets | %.1f s | previous %.1f s | %.1f× | "
+              "%ld tets differ, weights differ by %.0e |\n",
+              long(P.rows()), 100.0 * double(outside) / double(P.rows()), long(bar.mesh.T.rows()), tEmbed, tBefore,
+              tBefore / tEmbed, differ, weights);
+  return {e, sortedByTet(e)};
+}
+
+// One frame with each method: the tet mesh skinned, then the tissue points carried (random order and
+// coherent order), with kept buffers; the previous kernels in the same run as the baseline.
+void skinning(const test::BoneBar& bar, const Eigen::MatrixXd& W, const MatrixX3d& C, const Embedded& tissue) {
+  const auto pose = test::middleJointPose(bar, Eigen::Vector3d::UnitZ(), 100.0);
+  const MatrixX3d& V = bar.mesh.V;
+  MatrixX3d posed, carried;
+  posing::linearBlendSkinning(V, W, pose, posed);
+  const double carryRandom = secondsPerFrame([&] { tissue.random.apply(posed, carried); });
+  const double carryCoherent = secondsPerFrame([&] { tissue.coherent.apply(posed, carried); });
+  const double carryBefore = secondsPerFrame([&] { previous::carry(tissue.random, posed); });
+  const double carryBeforeCoherent = secondsPerFrame([&] { previous::carry(tissue.coherent, posed); });
+  std::printf("| carry %ld points | random order %.1f ms, coherent %.1f ms | previous %.1f ms, %.1f ms | %.1f×, %.1f× |\n",
+              long(tissue.random.tet.size()), 1e3 * carryRandom, 1e3 * carryCoherent, 1e3 * carryBefore,
+              1e3 * carryBeforeCoherent, carryBefore / carryRandom, carryBeforeCoherent / carryCoherent);
+  struct Method {
+    const char* name;
+    std::function<void()> skin;
+    std::function<MatrixX3d()> before;
+  };
+  const Method methods[] = {
+      {"LBS", [&] { posing::linearBlendSkinning(V, W, pose, posed); }, [&] { return previous::lbs(V, W, pose); }},
+      {"DQS", [&] { posing::dualQuaternionSkinning(V, W, pose, posed); }, [&] { return previous::dqs(V, W, pose); }},
+      {"CoR", [&] { posing::corSkinning(V, W, C, pose, posed); }, [&] { return previous::cor(V, W, C, pose); }}};
+  for (const Method& m : methods) {
+    const double skin = secondsPerFrame(m.skin), before = secondsPerFrame(m.before);
+    const double difference = (posed - m.before()).cwiseAbs().maxCoeff();
+    const double frame = secondsPerFrame([&] {
+      m.skin();
+      tissue.coherent.apply(posed, carried);
+    });
+    std::printf("| one frame %s (%ld vertices + %ld points) | tet mesh %.1f ms, with tissue %.1f ms (%.0f fps; "
+                "random order %.1f ms) | previous tet mesh %.1f ms, with tissue %.1f ms (%.0f fps) | %.1f× | "
+                "max difference %.0e |\n",
+                m.name, long(V.rows()), long(tissue.random.tet.size()), 1e3 * skin, 1e3 * frame, 1 / frame,
+                1e3 * (skin + carryRandom), 1e3 * before, 1e3 * (before + carryBeforeCoherent),
+                1 / (before + carryBeforeCoherent), (before + carryBeforeCoherent) / frame, difference);
+  }
 }
 
 }  // namespace
@@ -118,8 +268,8 @@ int main(int argc, char** argv) {
   std::printf("| bone weights | %.1f s |\n", tWeights);
   MatrixX3d C;
   centres(bar, W, C, sampleSize);
-  skinning(bar, W, C);
-  mapping(bar, W);
+  const Embedded tissue = mapping(bar);
+  skinning(bar, W, C, tissue);
   const test::BoneBar many = manyBoneBar(3);
   const Eigen::MatrixXd manyW = posing::computeBoneWeights(many.mesh.V, many.mesh.T, many.boneOfVertex);
   std::printf("\n%ld bones, 3 cells per unit: %ld vertices, %ld tets\n\n", long(manyW.cols()), long(many.mesh.V.rows()),

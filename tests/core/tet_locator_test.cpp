@@ -127,6 +127,27 @@ TEST_F(TetLocatorGrid, InsidePointsInBatchAreLocated) {
   }
 }
 
+// The batch visits points in Morton order for speed; each answer must be exactly the single query's.
+TEST_F(TetLocatorGrid, BatchAnswersAreTheSingleQueryAnswers) {
+  std::uniform_real_distribution<double> u(-0.5, kSide + 0.5);
+  MatrixX3d P(3000, 3);
+  for (int i = 0; i < P.rows(); ++i) P.row(i) << u(rng), u(rng), u(rng);
+  P.row(7) = P.row(2000);  // a repeated point
+  const std::vector<TetLocation> batch = locator.locateOrNearest(P);
+  int inside = 0;
+  for (int i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d p = P.row(i).transpose();
+    const TetLocation single = locator.locateOrNearest(p);
+    ASSERT_EQ(batch[i].tet, single.tet) << i;
+    ASSERT_EQ(batch[i].barycentric, single.barycentric) << i;
+    ASSERT_EQ(batch[i].inside, locator.locate(p).has_value()) << i;
+    inside += batch[i].inside;
+  }
+  // About (2 / 3)^3 of the points fall in the cube.
+  EXPECT_GT(inside, 700);
+  EXPECT_LT(inside, 1200);
+}
+
 TEST(TetLocator, BarycentricOfTheUnitTet) {
   MatrixX3d V(4, 3);
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;

@@ -14,6 +14,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <string>
 
 using namespace vesalius;
@@ -131,6 +132,83 @@ TEST(Skinning, DqsVolumeChangeOnTheBarIsDiscretisationError) {
   EXPECT_LT(std::abs(change[1]), 0.35 * std::abs(change[0]));  // second order: a quarter, up to the weights
 }
 
+// The skinning kernels run by blocks of vertices with the arithmetic rearranged for speed (blending.h).
+// Here each method is evaluated vertex by vertex straight from the formulas of its header, as the kernels
+// did before, and both must agree to rounding, on bone transforms that turn up to 340° (both hemispheres).
+namespace {
+
+Eigen::Vector3d lbsReference(const Eigen::RowVectorXd& w, const std::vector<Eigen::Isometry3d>& T, const Eigen::Vector3d& v) {
+  Eigen::Matrix<double, 3, 4> blended = Eigen::Matrix<double, 3, 4>::Zero();
+  for (Eigen::Index j = 0; j < w.size(); ++j) blended += w[j] * T[std::size_t(j)].affine();
+  return blended.leftCols<3>() * v + blended.col(3);
+}
+
+// Σ_j ±w_j q_j over the bones, each quaternion in the heaviest bone's hemisphere.
+Eigen::Vector4d blendedRotation(const Eigen::RowVectorXd& w, const std::vector<Eigen::Isometry3d>& T) {
+  Eigen::Index heaviest = 0;
+  w.maxCoeff(&heaviest);
+  const Eigen::Vector4d pivot = Eigen::Quaterniond(T[std::size_t(heaviest)].rotation()).coeffs();
+  Eigen::Vector4d blend = Eigen::Vector4d::Zero();
+  for (Eigen::Index j = 0; j < w.size(); ++j) {
+    const Eigen::Vector4d q = Eigen::Quaterniond(T[std::size_t(j)].rotation()).coeffs();
+    blend += w[j] * (q.dot(pivot) < 0 ? -q : q);
+  }
+  return blend;
+}
+
+Eigen::Vector3d dqsReference(const Eigen::RowVectorXd& w, const std::vector<Eigen::Isometry3d>& T, const Eigen::Vector3d& v) {
+  Eigen::Index heaviest = 0;
+  w.maxCoeff(&heaviest);
+  const Eigen::Quaterniond pivot(T[std::size_t(heaviest)].rotation());
+  Eigen::Vector4d real = Eigen::Vector4d::Zero(), dual = Eigen::Vector4d::Zero();
+  for (Eigen::Index j = 0; j < w.size(); ++j) {
+    const Eigen::Quaterniond q(T[std::size_t(j)].rotation());
+    const Eigen::Vector3d t = T[std::size_t(j)].translation();
+    const double s = q.coeffs().dot(pivot.coeffs()) < 0 ? -w[j] : w[j];
+    real += s * q.coeffs();
+    dual += s * 0.5 * (Eigen::Quaterniond(0, t.x(), t.y(), t.z()) * q).coeffs();
+  }
+  // The unit dual quaternion (r, d) / |r| moves v to r v r* + 2 d r*.
+  const Eigen::Quaterniond r(Eigen::Vector4d(real / real.norm())), d(Eigen::Vector4d(dual / real.norm()));
+  return r * v + 2.0 * (d * r.conjugate()).vec();
+}
+
+Eigen::Vector3d corReference(const Eigen::RowVectorXd& w, const std::vector<Eigen::Isometry3d>& T, const Eigen::Vector3d& p,
+                             const Eigen::Vector3d& v) {
+  const Eigen::Matrix3d R = Eigen::Quaterniond(Eigen::Vector4d(blendedRotation(w, T).normalized())).toRotationMatrix();
+  return R * v + lbsReference(w, T, p) - R * p;
+}
+
+}  // namespace
+
+TEST(Skinning, BlockedKernelsMatchThePerVertexFormulas) {
+  const SkinnedBar& s = skinnedBar();
+  const MatrixX3d& V = s.bar.mesh.V;
+  ASSERT_GT(V.rows() % 256, 0);  // a partial last block
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> angle(-M_PI, 2 * M_PI), unit(-1, 1);
+  std::vector<Eigen::Isometry3d> T(4, Eigen::Isometry3d::Identity());
+  for (auto& t : T)
+    t.translate(Eigen::Vector3d(10 * unit(rng), 10 * unit(rng), 10 * unit(rng)))
+        .rotate(Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized()));
+  MatrixX3d lbs = MatrixX3d::Constant(7, 3, 1.0), dqs, cor;  // a reused buffer of another size must not matter
+  posing::linearBlendSkinning(V, s.W, T, lbs);
+  posing::dualQuaternionSkinning(V, s.W, T, dqs);
+  posing::corSkinning(V, s.W, s.centres, T, cor);
+  double worst[3] = {0, 0, 0};
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Eigen::RowVectorXd w = s.W.row(i);
+    const Eigen::Vector3d v = V.row(i).transpose();
+    worst[0] = std::max(worst[0], (lbs.row(i).transpose() - lbsReference(w, T, v)).norm());
+    worst[1] = std::max(worst[1], (dqs.row(i).transpose() - dqsReference(w, T, v)).norm());
+    worst[2] = std::max(worst[2], (cor.row(i).transpose() - corReference(w, T, s.centres.row(i).transpose(), v)).norm());
+  }
+  std::printf("blocked kernels against per-vertex formulas: LBS %.1e, DQS %.1e, CoR %.1e of the bar's size\n",
+              worst[0] / barSize(), worst[1] / barSize(), worst[2] / barSize());
+  for (int m = 0; m < 3; ++m) EXPECT_LT(worst[m], 1e-13 * barSize()) << name(Method(m));
+  EXPECT_EQ(posing::dualQuaternionSkinning(V, s.W, T), dqs);
+}
+
 TEST(Skinning, RefusesMismatchedSizes) {
   const SkinnedBar& s = skinnedBar();
   const std::vector<Eigen::Isometry3d> three(3, Eigen::Isometry3d::Identity());
@@ -138,4 +216,5 @@ TEST(Skinning, RefusesMismatchedSizes) {
   EXPECT_THROW(posing::dualQuaternionSkinning(s.bar.mesh.V, s.W, three), UsageError);
   const std::vector<Eigen::Isometry3d> four(4, Eigen::Isometry3d::Identity());
   EXPECT_THROW(posing::corSkinning(s.bar.mesh.V, s.W, s.centres.topRows(10), four), UsageError);
+  EXPECT_THROW(posing::linearBlendSkinning(s.bar.mesh.V, Eigen::MatrixXd(s.W.rows(), 0), {}), UsageError);
 }

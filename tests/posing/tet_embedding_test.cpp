@@ -4,6 +4,7 @@
 #include "vesalius/core/tet_embedding.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/tet_locator.h"
 
 #include "test_tets.h"
 
@@ -54,6 +55,26 @@ TEST(TetEmbedding, PointsInsideGetTheirContainingTet) {
   EXPECT_GE(e.barycentric.minCoeff(), -1e-12);
   EXPECT_LT((e.barycentric.rowwise().sum().array() - 1.0).abs().maxCoeff(), 1e-12);
   for (Eigen::Index p = 0; p < P.rows(); ++p) ASSERT_EQ(e.corners.row(p), box.T.row(e.tet[p]));
+}
+
+// Inside, the locator's weights are kept; outside, the nearest tet's unclamped weights are computed: both
+// must be exactly barycentric(tet, p), as when the embedding computed them all again.
+TEST(TetEmbedding, WeightsAreTheBarycentricCoordinatesInTheirTet) {
+  const TetMesh box = test::boxTets(3, 3, 3, 10.0);
+  const MatrixX3d P = randomPoints(500, -5.0, 35.0, 13);
+  const TetEmbedding e = embedInTets(box.V, box.T, P);
+  const TetLocator locator(box.V, box.T);
+  int outside = 0;
+  for (Eigen::Index p = 0; p < P.rows(); ++p) {
+    ASSERT_EQ(e.barycentric.row(p).transpose(), locator.barycentric(e.tet[p], P.row(p).transpose())) << p;
+    outside += e.barycentric.row(p).minCoeff() < -1e-9;
+  }
+  EXPECT_GT(outside, 100);  // 1 - (3 / 4)^3 of the points lie outside the box
+  MatrixX3d carried = MatrixX3d::Zero(2, 3);  // reused buffer of another size
+  e.apply(box.V, carried);
+  EXPECT_EQ(carried, e.apply(box.V));
+  EXPECT_LT((carried - P).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_THROW(e.apply(box.V.topRows(20), carried), UsageError);
 }
 
 TEST(TetAffineMaps, AgreeWithTheEmbeddingUnderANonlinearDeformation) {

@@ -12,11 +12,13 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <Eigen/LU>
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -51,6 +53,36 @@ double closestOnTetSurface(const MatrixX3d& V, const MatrixX4i& T, int t, const 
   return best;
 }
 
+// Spreads the low 21 bits of x three apart (bit k to bit 3k), for interleaving three coordinates.
+std::uint64_t spreadBits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffff;
+  x = (x | x << 16) & 0x1f0000ff0000ff;
+  x = (x | x << 8) & 0x100f00f00f00f00f;
+  x = (x | x << 4) & 0x10c30c30c30c30c3;
+  x = (x | x << 2) & 0x1249249249249249;
+  return x;
+}
+
+// Row indices of P sorted by the Morton code of each point on a 2^21 grid over `box` (points outside it
+// clamped onto it, non-finite ones first); ties by index, so the order is the same on any thread count.
+std::vector<Eigen::Index> mortonOrder(const MatrixX3d& P, const Eigen::AlignedBox3d& box) {
+  const Eigen::Array3d scale = double((1 << 21) - 1) / box.sizes().array().max(1e-300);
+  std::vector<std::pair<std::uint64_t, Eigen::Index>> keyed(std::size_t(P.rows()));
+  tbb::parallel_for(Eigen::Index(0), P.rows(), [&](Eigen::Index p) {
+    const Eigen::Array3d x = (P.row(p).transpose() - box.min()).array() * scale;
+    std::uint64_t code = 0;
+    if (x.allFinite())
+      for (int a = 0; a < 3; ++a)
+        code |= spreadBits(std::uint64_t(std::clamp(x[a], 0.0, double((1 << 21) - 1)))) << a;
+    keyed[std::size_t(p)] = {code, p};
+  });
+  tbb::parallel_sort(keyed.begin(), keyed.end());
+  std::vector<Eigen::Index> order(keyed.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+  return order;
+}
+
 }  // namespace
 
 TetLocator::TetLocator(const MatrixX3d& V, const MatrixX4i& T) : V_(V), T_(T), tree_(tetBoxes(V, T)) {}
@@ -78,7 +110,7 @@ std::optional<TetLocation> TetLocator::locate(const Eigen::Vector3d& p, double t
     const double lowest = w.minCoeff<Eigen::PropagateNaN>();
     // Of several tets within tolerance (p near a shared face), keep the one p is deepest inside.
     if (!(lowest >= bestMin)) return false;  // also rejects NaN weights of a flat tet
-    best = TetLocation{t, w};
+    best = TetLocation{t, w, true};
     bestMin = lowest;
     return lowest >= 0.0;
   });
@@ -94,18 +126,20 @@ TetLocation TetLocator::locateOrNearest(const Eigen::Vector3d& p) const {
     const double d = closestOnTetSurface(V_, T_, t, p, w);
     if (d < bestDistance) {
       bestDistance = d;
-      best = {t, w};
+      best = {t, w, false};
     }
   });
   return best;
 }
 
 std::vector<TetLocation> TetLocator::locateOrNearest(const MatrixX3d& P) const {
-  std::vector<TetLocation> result(P.rows());
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, P.rows(), 256),
-                    [&](const tbb::blocked_range<Eigen::Index>& range) {
-                      for (Eigen::Index i = range.begin(); i != range.end(); ++i)
-                        result[i] = locateOrNearest(Eigen::Vector3d(P.row(i).transpose()));
+  const std::vector<Eigen::Index> order = mortonOrder(P, tree_.bounds());
+  std::vector<TetLocation> result(std::size_t(P.rows()));
+  // Consecutive points of the order stay together in one task, to share the cache.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        result[std::size_t(order[i])] = locateOrNearest(Eigen::Vector3d(P.row(order[i]).transpose()));
                     });
   return result;
 }

@@ -1,7 +1,10 @@
 // Point location in a tetrahedral mesh: which tet holds a point, and its barycentric coordinates.
 //
 // Build once, query many times (thread-safe). Used to embed surfaces, markers and tissue vertices in
-// tet meshes (seed 001 §3.4, seed 002 §4.3).
+// tet meshes (seed 001 §3.4, seed 002 §4.3). Seed 001 §3.4 finds each vertex's tet through a spatial hash;
+// here a bounding-volume hierarchy does it, and a batch of points is visited in Morton (Z-curve) order, so
+// that consecutive queries walk the same tree nodes and tets while they are still in cache. The order
+// changes only the speed: each point's answer is the one a single query gives.
 #pragma once
 
 #include "vesalius/core/box_tree.h"
@@ -18,6 +21,7 @@ namespace vesalius {
 struct TetLocation {
   int tet = -1;
   Eigen::Vector4d barycentric = Eigen::Vector4d::Zero();  // weights of T(tet, 0..3), summing to 1
+  bool inside = false;  // tet contains the point (else it is the nearest tet)
 };
 
 class TetLocator {
@@ -30,7 +34,7 @@ class TetLocator {
   // The containing tet if there is one, else the tet whose clamped barycentric point is nearest to p;
   // barycentric weights are then those of the nearest point (all in [0, 1]).
   TetLocation locateOrNearest(const Eigen::Vector3d& p) const;
-  // One query per row of P, in parallel.
+  // P: #P by 3. One locateOrNearest(p) per row of P (the same answers), in parallel, in Morton order.
   std::vector<TetLocation> locateOrNearest(const MatrixX3d& P) const;
 
   // Barycentric coordinates of p with respect to tet t (may be outside [0, 1]).

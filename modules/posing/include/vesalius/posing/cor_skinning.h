@@ -9,7 +9,7 @@
 //   v' = R v + t.
 // Rotations blend as in DQS (no collapse), while the centre, which lies between the bones the vertex
 // follows, keeps the bulge of DQS away. With p_i = v_i this is linear blend skinning, which is what a
-// vertex without a centre gets.
+// vertex without a centre gets. Computed as v' = R (v − p_i) + Σ_j w_ij T_j p_i, the same up to rounding.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -23,8 +23,11 @@ namespace vesalius::posing {
 
 // V: #V by 3 rest positions, W: #V by #B bone weights, centres: #V by 3 from computeRotationCenters,
 // transforms: #B bone transforms from rest to posed. Returns #V by 3 posed positions. Throws UsageError if
-// the sizes disagree.
+// the sizes disagree or there are vertices but no bones.
 MatrixX3d corSkinning(const MatrixX3d& V, const Eigen::MatrixXd& W, const MatrixX3d& centres,
                       const std::vector<Eigen::Isometry3d>& transforms);
+// The same into `posed` (resized to #V by 3; not V itself), which a caller posing many frames keeps.
+void corSkinning(const MatrixX3d& V, const Eigen::MatrixXd& W, const MatrixX3d& centres,
+                 const std::vector<Eigen::Isometry3d>& transforms, MatrixX3d& posed);
 
 }  // namespace vesalius::posing

@@ -19,8 +19,11 @@
 namespace vesalius::posing {
 
 // V: #V by 3 rest positions, W: #V by #B bone weights, transforms: #B bone transforms from rest to posed.
-// Returns #V by 3 posed positions. Throws UsageError if the sizes disagree.
+// Returns #V by 3 posed positions. Throws UsageError if the sizes disagree or there are vertices but no bones.
 MatrixX3d dualQuaternionSkinning(const MatrixX3d& V, const Eigen::MatrixXd& W,
                                  const std::vector<Eigen::Isometry3d>& transforms);
+// The same into `posed` (resized to #V by 3; not V itself), which a caller posing many frames keeps.
+void dualQuaternionSkinning(const MatrixX3d& V, const Eigen::MatrixXd& W,
+                            const std::vector<Eigen::Isometry3d>& transforms, MatrixX3d& posed);
 
 }  // namespace vesalius::posing
