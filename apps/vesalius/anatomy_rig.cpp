@@ -15,16 +15,22 @@ namespace fs = std::filesystem;
 namespace vesalius::cli {
 
 Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isometry3d>& posedWorld) {
+  // BVH offsets carry no rotation: the file's skeleton has the joints' rest positions with unrotated frames,
+  // each posed by its joint's rest-to-posed map, which is all skinning needs (skeleton_pose.h).
+  const std::vector<Eigen::Isometry3d> restWorld = rest.restWorld();
   Motion motion;
   motion.skeleton = rest;
+  std::vector<Eigen::Isometry3d> world(rest.joints.size());
   const std::vector<Channel> rotations{Channel::Zrotation, Channel::Yrotation, Channel::Xrotation};
   std::vector<double> values;
   for (std::size_t j = 0; j < rest.joints.size(); ++j) {
-    const Joint& joint = rest.joints[j];
-    if (!joint.restLocal.linear().isIdentity(1e-12))
-      throw UsageError("skeleton '" + joint.name + "': a rotated rest frame cannot be written as BVH");
-    const Eigen::Isometry3d parent = joint.parent < 0 ? Eigen::Isometry3d::Identity() : posedWorld[joint.parent];
-    const Eigen::Isometry3d local = parent.inverse() * posedWorld[j];
+    Joint& joint = motion.skeleton.joints[j];
+    const Eigen::Vector3d at = restWorld[j].translation();
+    world[j] = posedWorld[j] * restWorld[j].inverse() * Eigen::Translation3d(at);
+    joint.restLocal = Eigen::Translation3d(joint.parent < 0 ? at : at - restWorld[joint.parent].translation());
+    joint.tail = restWorld[j].linear() * joint.tail;
+    const Eigen::Isometry3d parent = joint.parent < 0 ? Eigen::Isometry3d::Identity() : world[joint.parent];
+    const Eigen::Isometry3d local = parent.inverse() * world[j];
     std::vector<Channel> channels = rotations;
     if (joint.parent < 0) {
       channels.insert(channels.begin(), {Channel::Xposition, Channel::Yposition, Channel::Zposition});
@@ -39,6 +45,56 @@ Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isomet
   motion.values = Eigen::Map<Eigen::RowVectorXd>(values.data(), Eigen::Index(values.size()));
   return motion;
 }
+
+namespace {
+
+bool hasRotatedFrames(const Skeleton& skeleton) {
+  for (const Eigen::Isometry3d& w : skeleton.restWorld())
+    if (!w.linear().isIdentity(1e-12)) return true;
+  return false;
+}
+
+// frames.txt: "name r00 r01 r02 r10 ... r22" per joint, its rest world rotation row by row.
+void writeFrames(const std::string& path, const Skeleton& skeleton, const WriteOptions& options) {
+  const std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
+  writeAtomically(path, options, [&](const std::string& temporary) {
+    std::ofstream out(temporary);
+    out.precision(17);
+    for (std::size_t j = 0; j < world.size(); ++j) {
+      out << skeleton.joints[j].name;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out << ' ' << world[j].linear()(r, c);
+      out << '\n';
+    }
+    if (!out) throw BadInput(temporary, "cannot write");
+  });
+}
+
+// Turns the rest frames of `skeleton` (read from BVH, unrotated) to those of frames.txt, keeping every
+// joint's position and tail.
+void readFrames(const std::string& path, Skeleton& skeleton) {
+  std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
+  std::istringstream lines(io::readTextFile(path));
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    std::string name;
+    Eigen::Matrix3d R;
+    if (!(in >> name)) continue;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) in >> R(r, c);
+    const int j = skeleton.find(name);
+    if (!in || j < 0 || !(R.transpose() * R).isIdentity(1e-9) || R.determinant() < 0)
+      throw BadInput(path, "line '" + line + "' is not a joint of skeleton.bvh and a rotation");
+    skeleton.joints[j].tail = R.transpose() * world[j].linear() * skeleton.joints[j].tail;
+    world[j].linear() = R;
+  }
+  for (Joint& joint : skeleton.joints) {
+    const int j = int(&joint - skeleton.joints.data());
+    joint.restLocal = joint.parent < 0 ? world[j] : world[joint.parent].inverse() * world[j];
+  }
+}
+
+}  // namespace
 
 MatrixX3d AnatomyRig::centres() const {
   const auto found = tets.vertexAttributes.real.find("cor_centre");
@@ -59,6 +115,7 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
   });
   std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();
   io::writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), options);
+  if (hasRotatedFrames(rig.skeleton)) writeFrames(dir + "/frames.txt", rig.skeleton, options);
   for (const auto& [name, mesh] : meshes) io::writeTriMesh(dir + "/meshes/" + name, mesh, io::MeshWriteOptions{options});
 }
 
@@ -69,6 +126,7 @@ AnatomyRig readAnatomyRig(const std::string& dir) {
     if (!fs::exists(p)) throw BadInput(p, "missing (make the anatomy directory with `vesalius rig`)");
   rig.tets = io::readTetMesh(tetsPath);
   rig.skeleton = io::readBvh(dir + "/skeleton.bvh").skeleton;
+  if (fs::exists(dir + "/frames.txt")) readFrames(dir + "/frames.txt", rig.skeleton);
   std::istringstream names(io::readTextFile(bonesPath));
   for (std::string name; std::getline(names, name);) {
     if (name.empty()) continue;

@@ -4,7 +4,10 @@
 //                      `rig --cor-centres` "cor_centre" (#V by 3, centres of rotation, §3.5);
 //                      cell data "label" (1: body)
 //   DIR/bones.txt      the skeleton joint of each column of "weights", one name a line
-//   DIR/skeleton.bvh   the skeleton at rest (mm, LPS: written with no axis change), one frame of zeros
+//   DIR/skeleton.bvh   the skeleton at rest (mm, LPS: written with no axis change), one frame of zeros;
+//                      BVH has no rest rotations, so its joints keep their positions with unrotated frames
+//   DIR/frames.txt     only for a skeleton with rotated rest frames (`rig --labels`, seed 001 §3.1): per
+//                      joint "name" and its rest world rotation, 9 numbers row by row
 //   DIR/meshes/*       the meshes at rest (mm, LPS): skin.<ext> (the body surface the rig was built from)
 //                      and the tissue meshes under their own file names; each is posed under its name
 // The tissue meshes are embedded in the tets (core/tet_embedding.h) when a pose run starts: that takes
@@ -42,8 +45,9 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
 // Throws BadInput naming the file that is missing or does not match the others.
 AnatomyRig readAnatomyRig(const std::string& dir);
 
-// The posed skeleton as BVH: `rest`'s hierarchy with one frame whose channels give `posedWorld`. Rest
-// frames must be unrotated (BVH offsets carry no rotation); UsageError otherwise.
+// The posed skeleton as BVH: `rest`'s hierarchy with one frame whose channels give `posedWorld`. BVH
+// offsets carry no rotation, so a rotated rest frame is written unrotated at its joint, posed by the same
+// rest-to-posed map posedWorld_j · restWorld_j⁻¹ (the skinning transform, which is thus kept).
 Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isometry3d>& posedWorld);
 
 }  // namespace vesalius::cli

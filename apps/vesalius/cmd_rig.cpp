@@ -1,22 +1,31 @@
 // vesalius rig: the posing rig of a body (seed 001 §3.1-3.5 preprocessing): a tet mesh of the inside of
-// the skin with bone regions, bone weights, centres of rotation, and the meshes it will carry.
+// the skin with bone regions, bone weights, centres of rotation, and the meshes it will carry. Either from a
+// skin and a skeleton (bones: capsules around its segments), or from a label map with segmented bones
+// (skeleton and bone regions from the labels, skeleton_from_bones.h).
 #include "anatomy_rig.h"
 #include "common.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/body_axes.h"
+#include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/shared_label_surfaces.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/posing/bone_capsules.h"
+#include "vesalius/posing/bone_vertices.h"
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/rotation_centers.h"
+#include "vesalius/posing/skeleton_from_bones.h"
+#include "vesalius/segmentation/label_edit.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/segmentation/label_resample.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -27,9 +36,11 @@ namespace vesalius::cli {
 namespace {
 
 struct RigOptions {
-  std::string skin, skeleton, baseMesh, out, space = "auto";
+  std::string skin, skeleton, baseMesh, out, space = "auto", labels, labelTable;
+  posing::SkeletonFromBonesOptions bones;
   std::vector<std::string> tissues;
   double voxelSize = 4.0;
+  double margin = 15.0;  // --labels: the map is cropped to the bones' box grown by this, mm
   long targetTets = 100000;
   bool corCentres = true;
   posing::BoneCapsuleOptions capsules;
@@ -90,7 +101,41 @@ std::vector<int> compactBones(Eigen::VectorXi& boneOfVertex, int joints) {
   return boneJoint;
 }
 
-void runRig(const RigOptions& o) {
+// Weights and (optionally) centres of rotation of rig.tets for the bone regions `bone`.
+void weighRig(AnatomyRig& rig, const Eigen::VectorXi& bone, const RigOptions& o, io::Report& report, Progress& progress) {
+  {
+    auto timer = report.time("weights");
+    progress.begin("weights", "Laplace bone weights");
+    rig.tets.vertexAttributes.real["weights"] = posing::computeBoneWeights(rig.tets.V, rig.tets.T, bone);
+    progress.end();
+  }
+  if (o.corCentres) {
+    auto timer = report.time("rotation_centres");
+    progress.begin("centres", "CoR centres of rotation");
+    rig.tets.vertexAttributes.real["cor_centre"] =
+        posing::computeRotationCenters(rig.tets.V, rig.tets.T, rig.tets.vertexAttributes.real["weights"]);
+    progress.end();
+  }
+  rig.tets.vertexAttributes.integer["bone"] = bone;
+}
+
+void finishRig(const RigOptions& o, const AnatomyRig& rig, const std::vector<std::pair<std::string, TriMesh>>& meshes,
+               io::Report& report) {
+  writeAnatomyRig(o.out, rig, meshes, o.common.writeOptions());
+  report.output("anatomy", o.out);
+  const Eigen::VectorXi& bone = rig.boneOfVertex();
+  const long boneVertices = (bone.array() >= 0).count();
+  report.metric("tet_vertices", rig.tets.V.rows());
+  report.metric("tets", rig.tets.T.rows());
+  report.metric("bones", rig.boneJoint.size());
+  report.metric("bone_vertices", boneVertices);
+  std::cout << o.out << ": " << rig.tets.V.rows() << " vertices, " << rig.tets.T.rows() << " tets, "
+            << rig.boneJoint.size() << " of " << rig.skeleton.joints.size() << " joints with bone regions ("
+            << boneVertices << " bone vertices), " << meshes.size() << " mesh(es)\n";
+  o.common.finish(report);
+}
+
+void runSkinRig(const RigOptions& o) {
   if (o.space != "auto" && o.space != "makehuman" && o.space != "lps")
     throw UsageError("rig: --space must be auto, makehuman or lps");
   const bool makeHuman = o.space == "makehuman" || (o.space == "auto" && fileExtension(o.skeleton) == ".mhskel");
@@ -115,34 +160,99 @@ void runRig(const RigOptions& o) {
   }
   Eigen::VectorXi bone = posing::boneCapsuleVertices(rig.tets.V, rig.skeleton, skin, o.capsules);
   rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
-  {
-    auto timer = report.time("weights");
-    progress.begin("weights", "Laplace bone weights");
-    rig.tets.vertexAttributes.real["weights"] = posing::computeBoneWeights(rig.tets.V, rig.tets.T, bone);
-    progress.end();
-  }
-  if (o.corCentres) {
-    auto timer = report.time("rotation_centres");
-    progress.begin("centres", "CoR centres of rotation");
-    rig.tets.vertexAttributes.real["cor_centre"] =
-        posing::computeRotationCenters(rig.tets.V, rig.tets.T, rig.tets.vertexAttributes.real["weights"]);
-    progress.end();
-  }
-  rig.tets.vertexAttributes.integer["bone"] = bone;
-
+  weighRig(rig, bone, o, report, progress);
   std::vector<std::pair<std::string, TriMesh>> meshes{{"skin" + fileExtension(o.skin), skin}};
   for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), toLps(io::readTriMesh(t), makeHuman));
-  writeAnatomyRig(o.out, rig, meshes, o.common.writeOptions());
-  report.output("anatomy", o.out);
-  const long boneVertices = (bone.array() >= 0).count();
-  report.metric("tet_vertices", rig.tets.V.rows());
-  report.metric("tets", rig.tets.T.rows());
-  report.metric("bones", rig.boneJoint.size());
-  report.metric("bone_vertices", boneVertices);
-  std::cout << o.out << ": " << rig.tets.V.rows() << " vertices, " << rig.tets.T.rows() << " tets, "
-            << rig.boneJoint.size() << " of " << rig.skeleton.joints.size() << " joints with bone regions ("
-            << boneVertices << " bone vertices), " << meshes.size() << " mesh(es)\n";
-  o.common.finish(report);
+  finishRig(o, rig, meshes, report);
+}
+
+// The smallest positive label that is no bone's: the rest of the body.
+Label bodyLabel(const posing::BoneSkeleton& bones) {
+  std::vector<bool> taken(65536, false);
+  for (const auto& labels : bones.labels)
+    for (Label l : labels) taken[l] = true;
+  Label body = 1;
+  while (taken[body]) ++body;
+  return body;
+}
+
+// Seed 001 §3.2 from a label map: every labelled voxel (holes filled) is inside the body, the bones' labels
+// are kept and the rest becomes one body label; their shared surfaces (touching bones and the body's
+// surface conform) go to TetGen as in `tetmesh --labels --shared --body`. Only the bones' box grown by
+// `margin` is meshed (the body is cut flat at its sides), resampled (nearest neighbour) to voxels of at
+// least `voxelSize` and within the seed's 250x700x120: the shared surfaces keep a triangle pair per voxel
+// face, which TetGen keeps, so the voxel size sets the tet count more than --target-tets does.
+meshing::SharedLabelSurfaces boneAndBodySurfaces(LabelMap map, const posing::BoneSkeleton& bones, Label body,
+                                                 double margin, double voxelSize) {
+  std::vector<bool> isBone(65536, false);
+  std::vector<Label> ids;
+  for (const auto& labels : bones.labels)
+    for (Label l : labels) isBone[l] = true, ids.push_back(l);
+  segmentation::Mask bone(map.labels.geometry, 0);
+  for (std::size_t v = 0; v < bone.values.size(); ++v) bone.values[v] = isBone[map.labels.values[v]];
+  map = segmentation::cropLabelMap(map, segmentation::maskBounds(bone, margin));
+  // At most one voxel per voxelSize along each axis, and within the seed's cap (LPS order).
+  const GridGeometry& g = map.labels.geometry;
+  Eigen::Vector3i cap = meshing::CoveringGridOptions{}.maxSize;
+  for (int d = 0; d < 3; ++d) {
+    Eigen::Index lps;
+    g.direction.col(d).cwiseAbs().maxCoeff(&lps);
+    cap[lps] = std::min(cap[lps], std::max(1, int(std::ceil(g.size[d] * g.spacing[d] / voxelSize))));
+  }
+  const GridGeometry capped = segmentation::cappedGeometry(g, cap);
+  if (capped.size != g.size) map = segmentation::resampleLabels(map, capped);
+  // The largest part only: crumbs of labels the crop cut off would be tets no bone weighs.
+  const segmentation::Mask inside =
+      segmentation::largestComponent(segmentation::fillBodyHoles(segmentation::nonZeroMask(map.labels)));
+  for (std::size_t v = 0; v < inside.values.size(); ++v)
+    map.labels.values[v] = inside.values[v] ? (isBone[map.labels.values[v]] ? map.labels.values[v] : body) : Label(0);
+  map.table.add({body, "body"});
+  ids.push_back(body);
+  return meshing::sharedLabelSurfaces(map, ids);
+}
+
+void runLabelRig(const RigOptions& o) {
+  io::Report report("rig");
+  report.input("labels", o.labels);
+  report.parameter("target_tets", o.targetTets);
+  report.parameter("margin_mm", o.margin);
+  report.parameter("voxel_size_mm", o.voxelSize);
+  report.parameter("cor_centres", o.corCentres);
+  Progress progress(o.common.progressStyle());
+  const LabelMap map = io::readLabelMap(o.labels, o.labelTable);
+  const posing::BoneSkeleton bones = posing::skeletonFromBones(map, o.bones, o.labels);
+  const Label body = bodyLabel(bones);
+  AnatomyRig rig;
+  rig.skeleton = bones.skeleton;
+  meshing::SharedLabelSurfaces surfaces;
+  {
+    auto timer = report.time("tetrahedralize");
+    progress.begin("tetrahedralize", "shared surfaces of the bones and the body, TetGen");
+    surfaces = boneAndBodySurfaces(map, bones, body, o.margin, o.voxelSize);
+    meshing::TetrahedralizeOptions tet;
+    tet.targetTets = o.targetTets;
+    rig.tets = meshing::tetrahedralizeLabels(surfaces, tet, o.labels);
+    progress.end();
+  }
+  Eigen::VectorXi bone = posing::boneVerticesOfLabels(rig.tets.T, rig.tets.tetAttributes.integer.at(kLabel),
+                                                     bones.labels, rig.tets.V.rows());
+  rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
+  weighRig(rig, bone, o, report, progress);
+  std::vector<std::pair<std::string, TriMesh>> meshes{{"skin.vtp", meshing::surfaceOfLabel(surfaces, body)}};
+  for (std::size_t j = 0; j < bones.labels.size(); ++j)
+    for (Label l : bones.labels[j]) meshes.emplace_back(map.table.find(l)->name + ".vtp", meshing::surfaceOfLabel(surfaces, l));
+  for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), io::readTriMesh(t));
+  report.metric("femoral_head_radius_left_mm", bones.femoralHeadLeft.radius);
+  report.metric("femoral_head_radius_right_mm", bones.femoralHeadRight.radius);
+  finishRig(o, rig, meshes, report);
+}
+
+void runRig(const RigOptions& o) {
+  const bool fromSkin = !o.skin.empty() || !o.skeleton.empty();
+  if (fromSkin == !o.labels.empty()) throw UsageError("rig: give --skin and --skeleton, or --labels (not both)");
+  if (fromSkin && (o.skin.empty() || o.skeleton.empty())) throw UsageError("rig: --skin and --skeleton go together");
+  if (!fromSkin && !o.labelTable.empty() && o.labels.empty()) throw UsageError("rig: --label-table needs --labels");
+  fromSkin ? runSkinRig(o) : runLabelRig(o);
 }
 
 }  // namespace
@@ -150,15 +260,25 @@ void runRig(const RigOptions& o) {
 void addRigCommand(CLI::App& app) {
   auto o = std::make_shared<RigOptions>();
   CLI::App* cmd = app.add_subcommand("rig", "Posing rig of a body: tet mesh, bone regions, weights, CoR centres");
-  cmd->add_option("--skin", o->skin, "Closed body surface (.obj .stl .vtp .ply .vtk)")->required();
-  cmd->add_option("--skeleton", o->skeleton, "Skeleton: MakeHuman .mhskel or .bvh")->required();
+  cmd->add_option("--skin", o->skin, "Closed body surface (.obj .stl .vtp .ply .vtk), with --skeleton");
+  cmd->add_option("--skeleton", o->skeleton, "Skeleton: MakeHuman .mhskel or .bvh, with --skin");
+  cmd->add_option("--labels", o->labels,
+                  "Instead of --skin/--skeleton: a label map with segmented bones (hip_left, hip_right, sacrum, "
+                  "femur_left, femur_right, vertebrae_L5 upward); skeleton and bone regions from its labels");
+  cmd->add_option("--label-table", o->labelTable, "Label table for --labels (default: the one beside it)");
+  cmd->add_option("--acetabulum-distance", o->bones.acetabulumDistance,
+                  "With --labels: femoral head voxels within this of the hip bone give the hip centre, mm")
+      ->capture_default_str();
   cmd->add_option("--base-mesh", o->baseMesh, "MakeHuman base.obj for a .mhskel (default: beside it)");
   cmd->add_option("--tissue", o->tissues, "A mesh to carry along (organ, bone, muscle), repeatable");
   cmd->add_option("--space", o->space,
                   "Space of the inputs: makehuman (decimetres, +Y up; converted to mm LPS), lps (mm), or auto "
                   "(makehuman for a .mhskel)")
       ->capture_default_str();
-  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the inside image, mm (grown to keep it under "
+  cmd->add_option("--margin", o->margin, "With --labels: mesh the bones' bounding box grown by this, mm")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the inside image (--skin) or of the labels meshed (--labels; coarser only), mm (grown to keep it under "
                                                "250x120x700 voxels, seed 001 §3.2)")
       ->capture_default_str();
   cmd->add_option("--target-tets", o->targetTets, "About this many tets")->capture_default_str();
@@ -176,7 +296,9 @@ void addRigCommand(CLI::App& app) {
       "Example (with the centres of rotation for `pose --method cor`; add --no-cor-centres to skip them):\n"
       "  vesalius rig --skin testdata/body/shapes/mh_neutral_body.obj "
       "--skeleton testdata/body/default.mhskel --out body-rig\n"
-      "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.");
+      "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.\n"
+      "From a CT's bone labels (TotalSegmentator names; the pelvis, femurs and lumbar spine):\n"
+      "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig");
   cmd->callback([o] { runRig(*o); });
 }
 
