@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 using namespace vesalius;
 
@@ -111,10 +112,16 @@ void wholeFit() {
 
 }  // namespace
 
-int main() {
-  std::printf("| run | Z (prep) | conjugate gradients | Woodbury | ratio | peak memory |\n|---|---|---|---|---|---|\n");
-  bench::inChild(searchDirection);
-  std::printf("\n| run | iterations | marker error (mean / max) | time | peak memory |\n|---|---|---|---|---|\n");
-  bench::inChild(wholeFit);
+// bench_fit [direction|fit]: one part only (the conjugate-gradient baseline alone takes minutes).
+int main(int argc, char** argv) {
+  const std::string only = argc > 1 ? argv[1] : "";
+  if (only.empty() || only == "direction") {
+    std::printf("| run | Z (prep) | conjugate gradients | Woodbury | ratio | peak memory |\n|---|---|---|---|---|---|\n");
+    bench::inChild(searchDirection);
+  }
+  if (only.empty() || only == "fit") {
+    std::printf("\n| run | iterations | marker error (mean / max) | time | peak memory |\n|---|---|---|---|---|\n");
+    bench::inChild(wholeFit);
+  }
   return 0;
 }

@@ -56,8 +56,16 @@ Eigen::MatrixXd EquilibriumJacobian::solvePinned(Eigen::MatrixXd B) const {
   return X;
 }
 
+Eigen::MatrixXd EquilibriumJacobian::equilibriumChange(const Eigen::MatrixXd& forceChange) const {
+  Eigen::MatrixXd dx = solvePinned(-forceChange);
+  if (N_.size()) dx -= N_ * (CNinverse_ * (C_ * dx));
+  return dx;
+}
+
 Eigen::MatrixXd EquilibriumJacobian::constraintJacobian(const Eigen::SparseMatrix<double>& rows) const {
-  // Z = A P E K_ff⁻¹ Eᵀ (−G) = −Wᵀ G with W = K_ff⁻¹ (Pᵀ Aᵀ) on the free coordinates.
+  // Solve on the side with fewer columns: J itself for a few parameters (the constant-strain stage's 6),
+  // otherwise Z = A P E K_ff⁻¹ Eᵀ (−G) = −Wᵀ G with W = K_ff⁻¹ (Pᵀ Aᵀ) on the free coordinates.
+  if (G_.cols() < rows.rows()) return rows * equilibriumChange(Eigen::MatrixXd(G_));
   Eigen::MatrixXd U = Eigen::MatrixXd(rows.transpose());
   if (N_.size()) U -= C_.transpose() * (CNinverse_.transpose() * (N_.transpose() * U));
   const Eigen::MatrixXd Wt = solvePinned(std::move(U)).transpose();
@@ -69,9 +77,7 @@ Eigen::MatrixXd EquilibriumJacobian::constraintJacobian(const Eigen::SparseMatri
 }
 
 Eigen::VectorXd EquilibriumJacobian::apply(const Eigen::VectorXd& ds) const {
-  Eigen::VectorXd dx = solvePinned(-(G_ * ds)).col(0);
-  if (N_.size()) dx -= N_ * (CNinverse_ * (C_ * dx));
-  return dx;
+  return equilibriumChange(Eigen::MatrixXd(G_ * ds)).col(0);
 }
 
 }  // namespace vesalius::fit

@@ -9,6 +9,7 @@
 #include "vesalius/fit/plastic_fit.h"
 
 #include "vesalius/fit/brent_minimize.h"
+#include "vesalius/fit/compressed_constraints.h"
 #include "vesalius/fit/equilibrium_jacobian.h"
 #include "vesalius/fit/plastic_laplacian.h"
 #include "vesalius/fit/point_constraints.h"
@@ -78,6 +79,19 @@ double materialScale(const TetMesh& templ, const Eigen::VectorXd& s0) {
   return c;
 }
 
+// [top; bottom], both with the same columns.
+Eigen::SparseMatrix<double> stacked(const Eigen::SparseMatrix<double>& top, const Eigen::SparseMatrix<double>& bottom) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(std::size_t(top.nonZeros() + bottom.nonZeros()));
+  for (const auto* part : {&top, &bottom})
+    for (Eigen::Index j = 0; j < part->outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*part, j); it; ++it)
+        entries.emplace_back(int(it.row() + (part == &bottom ? top.rows() : 0)), int(it.col()), it.value());
+  Eigen::SparseMatrix<double> out(top.rows() + bottom.rows(), top.cols());
+  out.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
 class Fitter {
  public:
   Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd& s0, const FitMarkers& markers,
@@ -101,7 +115,7 @@ class Fitter {
   static constexpr double kMinDamping = 1e-9, kStartDamping = 1e-3, kMaxDamping = 1e12;
 
   Linearization linearize(const Stage& stage);
-  Eigen::VectorXd direction(const Stage& stage, Linearization& lin, double mu) const;
+  Eigen::VectorXd direction(const Stage& stage, Linearization& lin, double mu, bool refined = true) const;
   Eigen::VectorXd boundedDirection(const Stage& stage, Linearization& lin);
   Eigen::VectorXd firstDirection(const Stage& stage, Linearization& lin);
   Eigen::VectorXd field(const Stage& stage, const Eigen::VectorXd& d) const;
@@ -121,6 +135,7 @@ class Fitter {
   PlasticFem fem_;
   PointSprings springs_;
   std::vector<PointConstraint> attachments_, landmarks_;
+  CompressedConstraints attachmentRows_;  // the attachments' terms of the objective, as few rows
   SurfaceProjection surface_;
   Eigen::SparseMatrix<double> Lsc_;
   SmoothnessBaseSolver base_;
@@ -145,6 +160,7 @@ Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd&
                                        options.attachmentWeight);
     springs_ = asSprings(attachments_, springStiffness_);
   }
+  attachmentRows_ = compressConstraints(attachments_, restV_.rows());
   landmarks_ = embedMaterialPoints(restV_, templ.T, scale_ * markers.templateLandmarks, markers.scanLandmarks,
                                    options.markerWeight);
   std::vector<Eigen::Triplet<double>> e;
@@ -155,7 +171,7 @@ Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd&
 }
 
 std::vector<PointConstraint> Fitter::constraints(Markers which, const Eigen::VectorXd& x) const {
-  std::vector<PointConstraint> all = attachments_;
+  std::vector<PointConstraint> all;
   if (which == Markers::Landmarks) all.insert(all.end(), landmarks_.begin(), landmarks_.end());
   if (which == Markers::Icp) {
     const auto icp = surface_.closestPoints(x, markers_.icp, options_.markerWeight);
@@ -165,7 +181,7 @@ std::vector<PointConstraint> Fitter::constraints(Markers which, const Eigen::Vec
 }
 
 double Fitter::objective(Markers which, const Eigen::VectorXd& s, const Eigen::VectorXd& x) const {
-  return smoothness(s) + 0.5 * constraintResiduals(constraints(which, x), x).squaredNorm();
+  return smoothness(s) + 0.5 * constraintResiduals(constraints(which, x), x).squaredNorm() + attachmentRows_.energy(x);
 }
 
 Eigen::VectorXd Fitter::clamped(Eigen::VectorXd s) const {
@@ -194,8 +210,8 @@ struct Fitter::Linearization {
   std::vector<PointConstraint> active;
   std::unique_ptr<RigidGauge> gauge;
   std::unique_ptr<EquilibriumJacobian> J;
-  Eigen::MatrixXd Z;              // √c A J, in the stage's parameters
-  Eigen::VectorXd r;              // √c (A x + b)
+  Eigen::MatrixXd Z;              // √c A J, in the stage's parameters; the attachments' rows first
+  Eigen::VectorXd r;              // √c (A x + b), the same rows
   Eigen::VectorXd gradient;       // of the objective in the stage's parameters: L² s + Zᵀ r (projected)
   std::unique_ptr<WoodburySolver> woodbury;  // full-field stages
   double dampingScale = 1.0;      // ||Z||² / trace(D): μ = λ · this
@@ -214,8 +230,10 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
     // An equilibrium next to a buckling is not definite; the projected stiffness still gives a descent.
     lin.J = std::make_unique<EquilibriumJacobian>(stiffness(true), G, x_, lin.gauge.get(), cholesky_);
   }
-  lin.Z = lin.J->constraintJacobian(constraintRows(lin.active, restV_.rows()));
-  lin.r = constraintResiduals(lin.active, x_);
+  lin.Z = lin.J->constraintJacobian(stacked(attachmentRows_.rows, constraintRows(lin.active, restV_.rows())));
+  const Eigen::VectorXd held = attachmentRows_.residuals(x_), marked = constraintResiduals(lin.active, x_);
+  lin.r.resize(held.size() + marked.size());
+  lin.r << held, marked;
   const Eigen::VectorXd smoothGradient = applyPlasticLaplacian(Lsc_, applyPlasticLaplacian(Lsc_, s_));
   if (stage.constantStrain) {
     lin.gradient = lin.Z.transpose() * lin.r + constantMap_.transpose() * smoothGradient;
@@ -231,25 +249,28 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
 }
 
 // The damped Gauss-Newton direction in the stage's parameters: (H + μ D) d = −gradient.
-Eigen::VectorXd Fitter::direction(const Stage& stage, Linearization& lin, double mu) const {
+Eigen::VectorXd Fitter::direction(const Stage& stage, Linearization& lin, double mu, bool refined) const {
   if (stage.constantStrain) {
     Eigen::Matrix<double, 6, 6> H = lin.Z.transpose() * lin.Z;
     H.diagonal().array() += mu * double(T_.rows());
     return H.ldlt().solve(-lin.gradient);
   }
   lin.woodbury->setDamping(mu);
-  return lin.woodbury->solve(-lin.gradient).col(0);
+  const Eigen::MatrixXd h = -lin.gradient;
+  return (refined ? lin.woodbury->solve(h) : lin.woodbury->solveUnrefined(h)).col(0);
 }
 
 // The damped direction with λ raised (and kept) until its full step changes no tet's plastic parameters by more
 // than maxStrainChange of their size: a trust region on Fp. The undamped Gauss-Newton step of a template
 // far from its markers asks for stretches of several hundred percent in a few tets, where neither the
 // linear model nor the equilibrium solve can follow; the damped one is smoother (D ⊇ L²) and shorter.
+// The trials are measured unrefined; only the one kept is refined.
 Eigen::VectorXd Fitter::boundedDirection(const Stage& stage, Linearization& lin) {
   for (;;) {
-    Eigen::VectorXd d = direction(stage, lin, damping_ * lin.dampingScale);
+    Eigen::VectorXd d = direction(stage, lin, damping_ * lin.dampingScale, false);
     const double change = relativeChange(s_, field(stage, d));
-    if (change <= options_.maxStrainChange || damping_ >= kMaxDamping) return d;
+    if (change <= options_.maxStrainChange || damping_ >= kMaxDamping)
+      return stage.constantStrain ? d : Eigen::VectorXd(lin.woodbury->refine(-lin.gradient, d).col(0));
     damping_ *= std::max(2.0, change / options_.maxStrainChange);
   }
 }
@@ -267,7 +288,7 @@ double Fitter::longestStep(const Stage& stage, const Eigen::VectorXd& d) const {
 // The objective the linearization predicts at s + η d.
 double Fitter::model(const Stage& stage, const Linearization& lin, const Eigen::VectorXd& d, double eta) const {
   const Eigen::VectorXd ds = field(stage, d);
-  return 0.5 * (lin.r + eta * (lin.Z * d)).squaredNorm() + smoothness(s_ + eta * ds);
+  return 0.5 * (lin.r + eta * (lin.Z * d)).squaredNorm() + attachmentRows_.offset + smoothness(s_ + eta * ds);
 }
 
 // The first direction tried. ICP markers are re-projected onto the surface as it moves, so their linear

@@ -89,10 +89,11 @@ Eigen::MatrixXd WoodburySolver::solveOnce(const Eigen::MatrixXd& h) const {
   return base_->solve(h - multiplyTransposed(Z_, w.topRows(C)) - root * (psi_ * w.bottomRows(6)), scale);
 }
 
-Eigen::MatrixXd WoodburySolver::solve(const Eigen::MatrixXd& h) const {
+Eigen::MatrixXd WoodburySolver::solve(const Eigen::MatrixXd& h) const { return refine(h, solveOnce(h)); }
+
+Eigen::MatrixXd WoodburySolver::refine(const Eigen::MatrixXd& h, Eigen::MatrixXd y) const {
   // Woodbury subtracts B⁻¹-sized terms to get a much smaller H⁻¹h; when cond(H) is large the round-off
   // left is removed by iterative refinement with the exact, matrix-free H.
-  Eigen::MatrixXd y = solveOnce(h);
   for (int round = 0; round < kRefinements; ++round) {
     const Eigen::MatrixXd residual = h - applyH(y);
     if (residual.norm() <= kRefinedResidual * h.norm()) break;

@@ -36,6 +36,8 @@ class EquilibriumJacobian {
 
  private:
   Eigen::MatrixXd solvePinned(Eigen::MatrixXd B) const;
+  // P K⁻¹ (−dG): the equilibrium's change (3#V by k) for force changes dG (3#V by k), in the gauge.
+  Eigen::MatrixXd equilibriumChange(const Eigen::MatrixXd& forceChange) const;
 
   Eigen::SparseMatrix<double> G_;
   SparseCholesky& cholesky_;

@@ -34,6 +34,11 @@ class WoodburySolver {
   // (at most 3 more rounds) until ||h − H y|| <= 1e-10 ||h||. Throws NumericalFailure if the capacitance
   // solve has a normwise backward error above 1e-10.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& h) const;
+  // One application of eq. 14 without the refinement: close enough to measure a trial step (the fitter's
+  // trust region tries several dampings), at a third of the cost.
+  Eigen::MatrixXd solveUnrefined(const Eigen::MatrixXd& h) const { return solveOnce(h); }
+  // The refinement of solve() from an approximation y of H⁻¹h.
+  Eigen::MatrixXd refine(const Eigen::MatrixXd& h, Eigen::MatrixXd y) const;
 
  private:
   static constexpr int kRefinements = 3;
