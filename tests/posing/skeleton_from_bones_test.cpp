@@ -162,7 +162,7 @@ TEST_F(CtBones, HipCentresSitInTheFemoralHeads) {
     EXPECT_GT(fit.radius, 18.0) << side;  // adult femoral heads: 20-27 mm, less half a 3 mm voxel
     EXPECT_LT(fit.radius, 28.0) << side;
     EXPECT_LT(fit.rmsResidual, 2.0) << side;
-    // The acetabulum's voxels are one head radius from the centre: 20.5 vs 22.0 mm (left), 23.2 vs 23.7 (right).
+    // The acetabulum's voxels are one head radius from the centre: 21.0 vs 22.4 mm (left), 23.6 vs 24.0 (right).
     EXPECT_NEAR(distanceToLabel(fit.centre, labels_->table.resolve(hip)), fit.radius, 2.0) << side;
   }
   const Eigen::Vector3d d = b.femoralHeadLeft.centre - b.femoralHeadRight.centre;

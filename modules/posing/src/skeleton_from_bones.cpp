@@ -1,8 +1,8 @@
 #include "vesalius/posing/skeleton_from_bones.h"
 
-#include "vesalius/core/box_tree.h"
 #include "vesalius/core/error.h"
 #include "vesalius/posing/bone_frame.h"
+#include "vesalius/posing/points_near.h"
 #include "vesalius/posing/principal_axis.h"
 
 #include <Eigen/Geometry>
@@ -44,23 +44,6 @@ std::map<Label, Region> regionsOf(const Grid<Label>& grid, const std::vector<Lab
   std::map<Label, Region> regions;
   for (Label id : ids) regions[id] = {matrix(all[id]), matrix(boundary[id])};
   return regions;
-}
-
-// The rows of A within `distance` of some row of B.
-MatrixX3d pointsNear(const MatrixX3d& A, const MatrixX3d& B, double distance) {
-  if (A.rows() == 0 || B.rows() == 0) return MatrixX3d(0, 3);
-  std::vector<Eigen::AlignedBox3d> boxes;
-  for (Eigen::Index r = 0; r < B.rows(); ++r) boxes.emplace_back(B.row(r).transpose(), B.row(r).transpose());
-  const BoxTree tree(boxes);
-  std::vector<Eigen::Index> near;
-  for (Eigen::Index r = 0; r < A.rows(); ++r) {
-    bool found = false;
-    tree.near(A.row(r).transpose(), distance * distance, [&](int) { return found = true; });
-    if (found) near.push_back(r);
-  }
-  MatrixX3d P(Eigen::Index(near.size()), 3);
-  for (std::size_t i = 0; i < near.size(); ++i) P.row(Eigen::Index(i)) = A.row(near[i]);
-  return P;
 }
 
 Eigen::Vector3d centroid(const MatrixX3d& P) { return P.colwise().mean().transpose(); }
