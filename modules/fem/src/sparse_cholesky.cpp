@@ -61,7 +61,8 @@ struct ThreadCommon {
   cholmod_common common;
 };
 
-// Solves one block of columns of B into X with this thread's Common; false if CHOLMOD fails.
+// Solves one block of columns of B into X with this thread's Common; false if CHOLMOD fails. B and X may
+// be the same matrix: the block is read before it is written.
 bool solveColumns(cholmod_factor* factor, const Eigen::MatrixXd& B, Eigen::Index first, Eigen::Index count,
                   Eigen::MatrixXd& X) {
   static tbb::enumerable_thread_specific<ThreadCommon> commons;
@@ -128,18 +129,22 @@ void SparseCholesky::factor(const Eigen::SparseMatrix<double>& A) {
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  Eigen::MatrixXd X = B;
+  solveInPlace(X);
+  return X;
+}
+
+void SparseCholesky::solveInPlace(Eigen::MatrixXd& X) const {
   if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: solve before factor");
-  if (B.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
+  if (X.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
   // Blocks of columns in parallel (seed 002 §3.4: the many right-hand sides of Z); each column's
   // solution is the same whatever the threads.
-  Eigen::MatrixXd X(B.rows(), B.cols());
   std::atomic<bool> failed{false};
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, B.cols(), kSolveColumns),
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), kSolveColumns),
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
-                      if (!solveColumns(impl_->llt.factor(), B, r.begin(), r.size(), X)) failed = true;
+                      if (!solveColumns(impl_->llt.factor(), X, r.begin(), r.size(), X)) failed = true;
                     });
   if (failed) throw NumericalFailure("sparse Cholesky: solve failed");
-  return X;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {

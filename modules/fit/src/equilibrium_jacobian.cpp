@@ -51,9 +51,9 @@ EquilibriumJacobian::EquilibriumJacobian(Eigen::SparseMatrix<double> K, Eigen::S
 
 Eigen::MatrixXd EquilibriumJacobian::solvePinned(Eigen::MatrixXd B) const {
   for (Eigen::Index p : pinned_) B.row(p).setZero();
-  Eigen::MatrixXd X = cholesky_.solve(B);
-  for (Eigen::Index p : pinned_) X.row(p).setZero();
-  return X;
+  cholesky_.solveInPlace(B);
+  for (Eigen::Index p : pinned_) B.row(p).setZero();
+  return B;
 }
 
 Eigen::MatrixXd EquilibriumJacobian::equilibriumChange(const Eigen::MatrixXd& forceChange) const {

@@ -134,7 +134,7 @@ SmoothnessBaseSolver::SmoothnessBaseSolver(const Eigen::SparseMatrix<double>& Ls
 // Lsc⁺ b for b ⊥ 1: solve the grounded system for x' (x'_0 = 0), then subtract the mean of [0; x'].
 void SmoothnessBaseSolver::applyScalarPseudoInverse(Eigen::MatrixXd& X) const {
   if (tetCount_ == 1) return;  // a single tet: Lsc = 0, and zero-mean blocks are empty
-  X = groundedCholesky_.solve(X);
+  groundedCholesky_.solveInPlace(X);
   const Eigen::RowVectorXd mean = X.colwise().sum() / double(tetCount_);
   X.rowwise() -= mean;
 }

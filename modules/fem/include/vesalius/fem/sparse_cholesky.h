@@ -26,6 +26,8 @@ class SparseCholesky {
 
   // B: #N by #K. Returns A⁻¹ B.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  // X: #N by #K, replaced by A⁻¹ X without a second block of its size (the fitter's are hundreds of MB).
+  void solveInPlace(Eigen::MatrixXd& X) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
   Eigen::Index size() const;
