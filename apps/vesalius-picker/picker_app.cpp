@@ -7,21 +7,18 @@
 #include "picker_interactor_style.h"
 #include "picker_window.h"
 #include "scan_volume.h"
+#include "vtk_window_support.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/polydata.h"
 
-#include <vtkCallbackCommand.h>
-#include <vtkCommand.h>
 #include <vtkImageMapToColors.h>
-#include <vtkInteractorEventRecorder.h>
 #include <vtkLookupTable.h>
+#include <vtkRenderWindow.h>
 
 #include <Eigen/LU>
-
-#include <X11/Xlib.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -79,36 +76,6 @@ void addOverlays(PickerWindow& window, const std::vector<std::string>& paths) {
   }
 }
 
-// VTK aborts when it cannot open the X display; say so in one line instead.
-void requireDisplay() {
-  Display* display = XOpenDisplay(nullptr);
-  if (!display) {
-    const char* name = std::getenv("DISPLAY");
-    throw UsageError(std::string("cannot open the X display '") + (name ? name : "") +
-                     "'; vesalius-picker needs one (without a screen, run it under xvfb-run)");
-  }
-  XCloseDisplay(display);
-}
-
-// Closing the window ends the event loop like Ctrl+Q (VTK 9.1's default TerminateApp() crashes inside
-// Start(), BUILD-NOTES.md).
-void endLoopOnWindowClose(vtkRenderWindowInteractor* interactor) {
-  auto endLoop = vtkSmartPointer<vtkCallbackCommand>::New();
-  endLoop->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-    static_cast<vtkRenderWindowInteractor*>(caller)->SetDone(true);
-  });
-  interactor->AddObserver(vtkCommand::ExitEvent, endLoop);
-}
-
-void playEvents(vtkRenderWindowInteractor* interactor, const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw BadInput(path, "cannot open the events file");
-  auto recorder = vtkSmartPointer<vtkInteractorEventRecorder>::New();
-  recorder->SetInteractor(interactor);
-  recorder->SetFileName(path.c_str());
-  recorder->Play();
-  recorder->SetInteractor(nullptr);
-}
-
 }  // namespace
 
 std::string defaultOutputPath(const PickerOptions& options) {
@@ -136,31 +103,23 @@ int runPicker(const PickerOptions& options) {
   document.setAutosavePath(autosavePath);
   if (restored) std::cerr << "restored unsaved markers from " << autosavePath << "\n";
 
-  requireDisplay();
+  const gui::DisplayConnection connection("vesalius-picker");  // outlives the window, which does not close it
   PickerWindow window(scan, options.windowWidth, options.windowHeight);
+  window.renderWindow()->SetDisplayId(connection.display);
   if (!options.labelsPath.empty()) addLabelLayers(window, options.labelsPath);
   addOverlays(window, options.overlayPaths);
   PickerController controller(document, window, scan, outputPath, options.force, options.acceptConfidence);
   auto style = vtkSmartPointer<PickerInteractorStyle>::New();
   style->setController(&controller);
   window.interactor()->SetInteractorStyle(style);
-  endLoopOnWindowClose(window.interactor());
+  gui::endLoopOnWindowClose(window.interactor());
   window.interactor()->Initialize();
   window.renderWindow()->Render();  // the viewports have their pixel sizes from here on
   window.fitViews();
   controller.refresh();
 
-  auto recorder = vtkSmartPointer<vtkInteractorEventRecorder>::New();
-  if (!options.recordEventsPath.empty()) {
-    recorder->SetInteractor(window.interactor());
-    recorder->SetFileName(options.recordEventsPath.c_str());
-    recorder->On();
-    recorder->Record();
-  }
-  if (!options.playEventsPath.empty()) playEvents(window.interactor(), options.playEventsPath);
-  if (!options.screenshotPath.empty()) window.writeScreenshot(options.screenshotPath);
-  if (options.playEventsPath.empty() || !options.exitAfterPlay) window.interactor()->Start();
-  if (!options.recordEventsPath.empty()) recorder->Stop();
+  gui::runEventLoop(window.renderWindow(), window.interactor(),
+                    {options.recordEventsPath, options.playEventsPath, options.screenshotPath, options.exitAfterPlay});
   document.autosave();
   return kExitOk;
 }

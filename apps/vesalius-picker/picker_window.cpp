@@ -1,14 +1,10 @@
 #include "picker_window.h"
 
-#include "vesalius/core/atomic_file.h"
-
-#include <vtkPNGWriter.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 namespace vesalius::picker {
 namespace {
@@ -90,20 +86,6 @@ void PickerWindow::render(const MarkerSet& markers, std::uint64_t markersRevisio
   window_->Render();
   for (auto& slice : slices_) slice->renderer()->SetDraw(true);
   view3d_->renderer()->SetDraw(true);
-}
-
-void PickerWindow::writeScreenshot(const std::string& path) {
-  auto capture = vtkSmartPointer<vtkWindowToImageFilter>::New();
-  capture->SetInput(window_);
-  capture->ReadFrontBufferOff();
-  capture->ShouldRerenderOff();  // what the last render() left, views it skipped included
-  capture->Update();
-  writeAtomically(path, WriteOptions{true}, [&](const std::string& temporaryPath) {
-    auto png = vtkSmartPointer<vtkPNGWriter>::New();
-    png->SetInputConnection(capture->GetOutputPort());
-    png->SetFileName(temporaryPath.c_str());
-    png->Write();
-  });
 }
 
 }  // namespace vesalius::picker

@@ -38,7 +38,6 @@ class PickerWindow {
   // pixels in VTK's offscreen frame buffer. The 3D view shows the slices, so it follows any change.
   void render(const MarkerSet& markers, std::uint64_t markersRevision);
   // Writes what the window shows as PNG.
-  void writeScreenshot(const std::string& path);
 
  private:
   vtkSmartPointer<vtkRenderWindow> window_;

@@ -4,24 +4,17 @@
 // the tissue vertices that leave their tet.
 #include "anatomy_rig.h"
 #include "common.h"
+#include "posing_session.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/io/image_io.h"
-#include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
-#include "vesalius/io/text_file.h"
-#include "vesalius/posing/cor_skinning.h"
-#include "vesalius/posing/corotational_fem.h"
-#include "vesalius/posing/dual_quaternion_skinning.h"
 #include "vesalius/posing/joint_angles.h"
-#include "vesalius/posing/linear_blend_skinning.h"
 #include "vesalius/posing/posed_volume.h"
-#include "vesalius/posing/retarget.h"
-#include "vesalius/posing/skeleton_pose.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <Eigen/LU>
@@ -48,16 +41,6 @@ struct PoseOptions {
   CommonOptions common;
 };
 
-// The joint map: --map, else names shared with the rig's skeleton (a MakeHuman BVH pose) when at least
-// half of the rig's bones are among them, else the CMU defaults.
-posing::JointMap jointMap(const PoseOptions& o, const Skeleton& source, const AnatomyRig& rig) {
-  if (!o.map.empty()) return posing::parseJointMap(io::readTextFile(o.map), o.map);
-  posing::JointMap shared;
-  for (const Joint& joint : rig.skeleton.joints)
-    if (source.find(joint.name) >= 0) shared.pairs.emplace_back(joint.name, joint.name);
-  return shared.pairs.size() * 2 >= rig.skeleton.joints.size() ? shared : posing::cmuToMakeHumanJointMap();
-}
-
 std::pair<int, int> frameRange(const PoseOptions& o, int count) {
   int first = o.frame, last = o.frame;
   if (!o.frames.empty() && std::sscanf(o.frames.c_str(), "%d:%d", &first, &last) != 2)
@@ -73,17 +56,6 @@ struct Posed {
   std::vector<Eigen::Isometry3d> world;
 };
 
-Posed skinTets(const AnatomyRig& rig, const std::vector<Eigen::Isometry3d>& world, const std::string& method) {
-  const std::vector<Eigen::Isometry3d> all = posing::restToPosed(rig.skeleton, world);
-  std::vector<Eigen::Isometry3d> bones;
-  for (int j : rig.boneJoint) bones.push_back(all[j]);
-  const MatrixX3d& V = rig.tets.V;
-  if (method == "lbs") return {posing::linearBlendSkinning(V, rig.weights(), bones), world};
-  if (method == "dqs") return {posing::dualQuaternionSkinning(V, rig.weights(), bones), world};
-  if (method == "cor") return {posing::corSkinning(V, rig.weights(), rig.centres(), bones), world};
-  return {posing::corotationalFem(V, rig.tets.T, rig.boneOfVertex(), bones).V, world};
-}
-
 // One pose to put the rig in: posed world transforms of its skeleton, the output folder's name (empty: --out
 // itself) and the motion frame (-1 for --angles).
 struct PoseSpec {
@@ -97,17 +69,13 @@ std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io:
   if (!o.angles.empty())
     return {{posing::poseFromJointAngles(rig.skeleton, posing::parseJointAngles(o.angles)), "", -1}};
   report.input("motion", o.motion);
-  const Motion motion = io::readBvh(o.motion);
-  posing::RetargetOptions retarget;
-  if (!o.motionLps) retarget.sourceAxes = io::yUpToLps();
-  const posing::Retargeter retargeter(motion.skeleton, rig.skeleton, jointMap(o, motion.skeleton, rig), retarget,
-                                      o.map.empty() ? "default joint map" : o.map);
+  const RetargetedMotion motion(o.motion, o.map, o.motionLps, rig.skeleton);
   const auto [first, last] = frameRange(o, motion.frameCount());
   std::vector<PoseSpec> poses;
   for (int f = first; f <= last; f += o.every) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d", f);
-    poses.push_back({retargeter.pose(motion.worldPose(f)), first == last ? "" : name, f});
+    poses.push_back({motion.pose(f), first == last ? "" : name, f});
   }
   return poses;
 }
@@ -261,7 +229,7 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
 }
 
 void checkOptions(const PoseOptions& o) {
-  if (o.method != "lbs" && o.method != "dqs" && o.method != "cor" && o.method != "fem")
+  if (!isSkinningMethod(o.method))
     throw UsageError("pose: --method must be lbs, dqs, cor or fem");
   if (o.motion.empty() == o.angles.empty()) throw UsageError("pose: give --motion or --angles (not both)");
   if (o.every < 1) throw UsageError("pose: --every must be 1 or more");
@@ -277,31 +245,28 @@ void runPose(const PoseOptions& o) {
   io::Report report("pose");
   report.input("anatomy", o.anatomy);
   report.parameter("method", o.method);
-  const AnatomyRig rig = readAnatomyRig(o.anatomy);
-  std::vector<TriMesh> meshes;
-  std::vector<TetEmbedding> embeddings;
-  {
+  const PosingSession session = [&] {
     auto timer = report.time("embed");
-    for (const std::string& path : rig.meshes) {
-      meshes.push_back(io::readTriMesh(path));
-      embeddings.push_back(embedInTets(rig.tets.V, rig.tets.T, meshes.back().V));
-    }
-  }
+    return PosingSession(o.anatomy);
+  }();
+  const AnatomyRig& rig = session.rig();
+  const std::vector<TriMesh>& meshes = session.meshes();
   const std::vector<PoseSpec> poses = readPoses(o, rig, report);
   Volumes volumes;
   if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
-  const QualityMeter meter(rig, meshes, embeddings);
+  const QualityMeter meter(rig, meshes, session.embeddings());
   std::vector<PoseQuality> quality;
   Progress progress(o.common.progressStyle());
   progress.begin("pose", o.method);
   double skinningSeconds = 0;
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto start = std::chrono::steady_clock::now();
-    const Posed posed = skinTets(rig, poses[p].world, o.method);
+    Posed posed{MatrixX3d(), poses[p].world};
+    session.skinTets(poses[p].world, o.method, posed.tets);
     skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<MatrixX3d> carried;
-    for (const TetEmbedding& e : embeddings) carried.push_back(e.apply(posed.tets));
+    session.carry(posed.tets, carried);
     quality.push_back(meter(posed.tets, carried));
     if (!o.qualityOnly) {
       const std::string& name = poses[p].name;

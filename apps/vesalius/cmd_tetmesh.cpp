@@ -1,11 +1,11 @@
 // vesalius tetmesh: a tetrahedral mesh of closed surfaces, or of labels of a label map (one region each).
 #include "common.h"
+#include "label_regions.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/tet_quality.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
-#include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/segmentation/label_ops.h"
@@ -43,22 +43,6 @@ std::vector<meshing::RegionSurface> readSurfaces(const TetmeshOptions& o) {
   return regions;
 }
 
-// The labels less every voxel next to the body's outside (the scan's edge counts as outside), so that a
-// bone reaching the body surface or the edge of the scan still gives a surface nested in the body's.
-Grid<Label> insideBody(const Grid<Label>& body, const Grid<Label>& labels) {
-  Grid<Label> inner = labels;
-  const auto& n = labels.geometry.size;
-  auto outside = [&](int i, int j, int k) {
-    return i < 0 || j < 0 || k < 0 || i >= n.x() || j >= n.y() || k >= n.z() || body.at(i, j, k) == 0;
-  };
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i)
-        for (int d = 0; d < 27 && inner.at(i, j, k) != 0; ++d)
-          if (outside(i + d % 3 - 1, j + d / 3 % 3 - 1, k + d / 9 - 1)) inner.at(i, j, k) = 0;
-  return inner;
-}
-
 // Seed 001 §3.2 keeps the image it meshes under 250x700x120 voxels by its choice of voxel size; larger
 // maps are resampled (nearest neighbour) onto such a grid.
 LabelMap cappedLabels(LabelMap map) {
@@ -72,21 +56,12 @@ LabelMap cappedLabels(LabelMap map) {
 }
 
 std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progress& progress) {
-  LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
+  const LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
-  std::vector<meshing::RegionSurface> regions;
-  if (o.body > 0) {
-    // Seed 001 §3.2: the body's inside is one solid region (air pockets such as bowel gas included) and
-    // the chosen labels (bones) are nested in it.
-    const LabelMap body =
-        segmentation::labelMapOf(segmentation::fillBodyHoles(segmentation::nonZeroMask(map.labels)), {1, "body"});
-    regions.push_back({meshing::labelSurface(body, 1), o.body, o.labels + " body (all labels, holes filled)"});
-    map.labels = insideBody(body.labels, map.labels);
-  }
-  for (meshing::LabelSurface& s : meshing::labelSurfaces(map, ids, {}, &progress))
-    regions.push_back({std::move(s.mesh), int(s.id), o.labels + " label '" + s.name + "'"});
-  return regions;
+  LabelRegionOptions regions;
+  regions.body = o.body;
+  return labelRegionSurfaces(map, ids, regions, o.labels, &progress);
 }
 
 // --shared: the labels' surfaces share their boundaries where they touch; with --body the rest of the

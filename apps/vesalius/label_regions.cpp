@@ -1,0 +1,95 @@
+#include "label_regions.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <algorithm>
+
+namespace vesalius::cli {
+
+Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, const std::vector<int>& rank) {
+  Grid<Label> peeled = labels;
+  const auto& n = labels.geometry.size;
+  // Whether the 26-neighbour (i, j, k) of a voxel of rank r makes it give way: outside, or a later label.
+  auto yields = [&](int i, int j, int k, int r) {
+    if (i < 0 || j < 0 || k < 0 || i >= n.x() || j >= n.y() || k >= n.z()) return body != nullptr;
+    if (body && body->at(i, j, k) == 0) return true;
+    return r >= 0 && rank[labels.at(i, j, k)] > r;
+  };
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const Label l = labels.at(i, j, k);
+        for (int d = 0; d < 27 && l != 0 && peeled.at(i, j, k) != 0; ++d)
+          if (yields(i + d % 3 - 1, j + d / 3 % 3 - 1, k + d / 9 - 1, rank[l])) peeled.at(i, j, k) = 0;
+      }
+  return peeled;
+}
+
+namespace {
+
+// The largest 6-connected part of `mask`: parts touching it only at an edge or a corner (which
+// segmentation::largestComponent, 26-connected, keeps) would be separate surface shells of a voxel or two.
+segmentation::Mask largestFaceConnectedPart(const segmentation::Mask& mask) {
+  const Eigen::Vector3i& n = mask.geometry.size;
+  std::vector<int> part(mask.values.size(), -1);
+  std::vector<long> sizes;
+  std::vector<long> stack;
+  for (long seed = 0; seed < long(mask.values.size()); ++seed) {
+    if (!mask.values[seed] || part[seed] >= 0) continue;
+    const int id = int(sizes.size());
+    sizes.push_back(0);
+    part[seed] = id;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const long v = stack.back();
+      stack.pop_back();
+      ++sizes[id];
+      const int i = int(v % n.x()), j = int(v / n.x() % n.y()), k = int(v / n.x() / n.y());
+      const int step[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+      for (const auto& d : step) {
+        const int a = i + d[0], b = j + d[1], c = k + d[2];
+        if (!mask.geometry.contains(a, b, c)) continue;
+        const long w = long(mask.geometry.linearIndex(a, b, c));
+        if (mask.values[w] && part[w] < 0) part[w] = id, stack.push_back(w);
+      }
+    }
+  }
+  const int largest = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  segmentation::Mask kept(mask.geometry, 0);
+  for (std::size_t v = 0; v < kept.values.size(); ++v) kept.values[v] = part[v] == largest;
+  return kept;
+}
+
+}  // namespace
+
+std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                                        const LabelRegionOptions& options, const std::string& source,
+                                                        Progress* progress) {
+  if (options.body > 0 && std::find(ids.begin(), ids.end(), Label(options.body)) != ids.end())
+    throw UsageError("the body's label " + std::to_string(options.body) + " is one of the chosen labels");
+  std::vector<int> rank(65536, -1);
+  for (std::size_t r = 0; r < ids.size(); ++r) rank[ids[r]] = int(r);
+  if (ids.empty())
+    for (std::size_t l = 1; l < rank.size(); ++l) rank[l] = int(l);
+  std::vector<meshing::RegionSurface> regions;
+  LabelMap peeled = map;
+  if (options.body > 0) {
+    const double voxel = map.labels.geometry.spacing.maxCoeff();
+    segmentation::Mask inside = segmentation::nonZeroMask(map.labels);
+    if (options.solidBody) inside = segmentation::closeMm(inside, 3 * voxel);
+    inside = segmentation::fillBodyHoles(inside);
+    if (options.solidBody) inside = largestFaceConnectedPart(inside);
+    const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
+    regions.push_back({meshing::labelSurface(body, 1, options.bodySurface), options.body,
+                       source + " body (all labels, holes filled)"});
+    peeled.labels = peeledLabels(&body.labels, map.labels, rank);
+  } else {
+    peeled.labels = peeledLabels(nullptr, map.labels, rank);
+  }
+  for (meshing::LabelSurface& s : meshing::labelSurfaces(peeled, ids, options.labelSurface, progress))
+    regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});
+  return regions;
+}
+
+}  // namespace vesalius::cli

@@ -1,0 +1,50 @@
+// Nested region surfaces of a label map for TetGen (seed 001 §3.2: the inside of the body as one region,
+// its bones nested in it), shared by `tetmesh --labels [--body]` and `rig --labels`.
+//
+// The body is every labelled voxel with its holes filled (air pockets such as bowel gas are inside), as
+// one closed surface (optionally made solid, see LabelRegionOptions::solidBody). The chosen labels are surfaced one by one (label_surface.h) after two peels that
+// keep the surfaces apart, since TetGen takes nested or disjoint surfaces but no touching ones:
+// - a label voxel next to the body's outside (26-neighbourhood; the map's edge counts as outside) is
+//   dropped, so a bone reaching the body surface or the scan's edge stays nested in the body;
+// - a label voxel next to a voxel of another chosen label listed later is dropped, so touching labels (a
+//   femoral head in its acetabulum, a vertebra on the next) are a voxel apart and the later one keeps its
+//   voxels whole (rig: the distal bone, which moves rigidly as a whole).
+// Deviation from the seed: its bone voxels are apart by construction; it does not say how.
+#pragma once
+
+#include "vesalius/core/label_map.h"
+#include "vesalius/core/progress.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/tetrahedralize.h"
+
+#include <string>
+#include <vector>
+
+namespace vesalius::cli {
+
+struct LabelRegionOptions {
+  int body = 0;                        // region label of the body around the labels; 0: no body region
+  // A solid body: closed by three voxels before its holes are filled (a segmentation's organs leave gaps
+  // and tunnels between them on which quadric decimation tears and falls back to a decimation that stops
+  // far above its target), then cut to its largest face-connected part (parts touching at an edge or a
+  // corner are separate surface pieces; crumbs give tets no bone weighs). Label voxels outside it are
+  // dropped by the peel.
+  bool solidBody = false;
+  meshing::SurfaceOptions bodySurface;   // how the body is surfaced (e.g. decimated)
+  meshing::SurfaceOptions labelSurface;  // how each label is surfaced
+};
+
+// The label voxels peeled as above: `labels` less its voxels next to a zero of `body` or the grid's edge
+// (with body null: neither) and, for a label of rank r, next to a label of larger rank. rank: per label
+// value (65536), -1 for labels not chosen (kept whole, ignored as neighbours). body: same grid as labels.
+Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, const std::vector<int>& rank);
+
+// Region surfaces of `ids` (in this order; empty: every label of the table) with region label = label
+// id, preceded by the body's (label options.body) if options.body > 0. `source` names the map in the
+// regions' names (TetGen's error messages). Throws UsageError if options.body is one of the labels,
+// BadInput if the body is empty.
+std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                                        const LabelRegionOptions& options, const std::string& source,
+                                                        Progress* progress = nullptr);
+
+}  // namespace vesalius::cli
