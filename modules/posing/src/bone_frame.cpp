@@ -23,4 +23,11 @@ Eigen::Matrix3d boneFrame(int firstAxis, const Eigen::Vector3d& first, int secon
   return frame;
 }
 
+Eigen::Isometry3d placedFrame(const Eigen::Matrix3d& axes, const Eigen::Vector3d& origin) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = axes;
+  T.translation() = origin;
+  return T;
+}
+
 }  // namespace vesalius::posing

@@ -21,13 +21,6 @@ struct Leg {
 
 Eigen::Vector3d centroid(const MatrixX3d& P) { return P.colwise().mean().transpose(); }
 
-Eigen::Isometry3d frameAt(const Eigen::Matrix3d& R, const Eigen::Vector3d& origin) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = R;
-  T.translation() = origin;
-  return T;
-}
-
 // The rows of P that `keep` accepts.
 template <class Keep>
 MatrixX3d rowsWhere(const MatrixX3d& P, Keep keep) {
@@ -91,7 +84,7 @@ MeshSkeleton skeletonFromBoneMeshes(const std::map<std::string, TriMesh>& meshes
   const Eigen::Vector3d origin = (out.left.femoralHead.centre + out.right.femoralHead.centre) / 2;
   const Eigen::Matrix3d pelvisAxes = boneFrame(0, left, 2, centroid(meshes.at(o.sacrum).V) - origin);
 
-  std::vector<Eigen::Isometry3d> world{frameAt(pelvisAxes, origin)};
+  std::vector<Eigen::Isometry3d> world{placedFrame(pelvisAxes, origin)};
   out.skeleton.joints.push_back({"pelvis", -1});
   const char* suffix[2] = {"_l", "_r"};
   for (int side = 0; side < 2; ++side) {
@@ -112,9 +105,9 @@ MeshSkeleton skeletonFromBoneMeshes(const std::map<std::string, TriMesh>& meshes
     j.ankleAxis = (j.medialMalleolus - j.lateralMalleolus).normalized();
     if (j.ankleAxis.dot(left) < 0) j.ankleAxis = -j.ankleAxis;
     const Eigen::Vector3d ankle = j.ankleCentre;
-    const Eigen::Isometry3d frames[3] = {frameAt(boneFrame(2, femurZ, 0, j.knee.axis), hip),
-                                         frameAt(boneFrame(2, tibiaZ, 0, j.knee.axis), knee),
-                                         frameAt(boneFrame(0, j.ankleAxis, 2, tibiaZ), ankle)};
+    const Eigen::Isometry3d frames[3] = {placedFrame(boneFrame(2, femurZ, 0, j.knee.axis), hip),
+                                         placedFrame(boneFrame(2, tibiaZ, 0, j.knee.axis), knee),
+                                         placedFrame(boneFrame(0, j.ankleAxis, 2, tibiaZ), ankle)};
     const Eigen::Vector3d tails[3] = {frames[0].inverse() * knee, frames[1].inverse() * ankle, Eigen::Vector3d::Zero()};
     const char* bodies[3] = {"femur", "tibia", "talus"};
     for (int b = 0; b < 3; ++b) {

@@ -48,13 +48,6 @@ std::map<Label, Region> regionsOf(const Grid<Label>& grid, const std::vector<Lab
 
 Eigen::Vector3d centroid(const MatrixX3d& P) { return P.colwise().mean().transpose(); }
 
-Eigen::Isometry3d frameAt(const Eigen::Matrix3d& R, const Eigen::Vector3d& origin) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = R;
-  T.translation() = origin;
-  return T;
-}
-
 }  // namespace
 
 BoneSkeleton skeletonFromBones(const LabelMap& labels, const SkeletonFromBonesOptions& o, const std::string& source) {
@@ -106,13 +99,13 @@ BoneSkeleton skeletonFromBones(const LabelMap& labels, const SkeletonFromBonesOp
   const Eigen::Vector3d left = out.femoralHeadLeft.centre - out.femoralHeadRight.centre;
   const Eigen::Vector3d origin = (out.femoralHeadLeft.centre + out.femoralHeadRight.centre) / 2;
   const Eigen::Vector3d up = (disc.empty() ? centroid(bone(o.sacrum).all) : disc[0]) - origin;
-  std::vector<Eigen::Isometry3d> world{frameAt(boneFrame(0, left, 2, up), origin)};
+  std::vector<Eigen::Isometry3d> world{placedFrame(boneFrame(0, left, 2, up), origin)};
   std::vector<Joint> joints{{"pelvis", -1}};
   out.labels.push_back({idOf(o.hipLeft), idOf(o.hipRight), idOf(o.sacrum)});
   for (const auto& [name, fit] : {std::pair{&o.femurLeft, &out.femoralHeadLeft}, {&o.femurRight, &out.femoralHeadRight}}) {
     const MatrixX3d& P = bone(*name).all;
     const Eigen::Vector3d z = principalAxis(P, fit->centre - centroid(P));
-    world.push_back(frameAt(boneFrame(2, z, 0, left), fit->centre));
+    world.push_back(placedFrame(boneFrame(2, z, 0, left), fit->centre));
     Joint joint{*name, 0};
     joint.tail = Eigen::Vector3d(0, 0, ((P.rowwise() - fit->centre.transpose()) * z).minCoeff());
     joints.push_back(joint);
@@ -120,7 +113,7 @@ BoneSkeleton skeletonFromBones(const LabelMap& labels, const SkeletonFromBonesOp
   }
   for (std::size_t v = 0; v < chain.size(); ++v) {
     const Eigen::Vector3d end = v + 1 < disc.size() ? disc[v + 1] : centroid(bone(chain[v]).all);
-    world.push_back(frameAt(boneFrame(2, end - disc[v], 0, left), disc[v]));
+    world.push_back(placedFrame(boneFrame(2, end - disc[v], 0, left), disc[v]));
     Joint joint{chain[v], v == 0 ? 0 : int(joints.size()) - 1};
     joint.tail = world.back().inverse() * end;
     joints.push_back(joint);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace vesalius::posing {
 
@@ -17,5 +18,8 @@ namespace vesalius::posing {
 // secondAxis lies in the plane of first and second, on second's side. Throws UsageError for equal or
 // out-of-range axes, BadInput if a direction is zero or the two are parallel (within 1e-9 rad).
 Eigen::Matrix3d boneFrame(int firstAxis, const Eigen::Vector3d& first, int secondAxis, const Eigen::Vector3d& second);
+
+// A joint's rest transform: the frame `axes` (a rotation) placed at `origin`.
+Eigen::Isometry3d placedFrame(const Eigen::Matrix3d& axes, const Eigen::Vector3d& origin);
 
 }  // namespace vesalius::posing
