@@ -19,9 +19,9 @@ namespace {
 
 using Eigen::Index;
 
-// BLAS's symmetric rank-k update, C := α AᵀA + β C (lower triangle). The Gram matrices of the Woodbury
-// setup are #T by #C with #C in the hundreds or thousands and take most of a fit's time; the BLAS kernel
-// (OpenBLAS picks AVX2/FMA at run time) is several times faster than Eigen's portable SSE2 build.
+// BLAS's symmetric rank-k update, C := α AᵀA + β C (lower triangle). The Woodbury setup's Gram matrix
+// costs #T · #C² with #C in the hundreds or thousands; the BLAS kernel (OpenBLAS picks AVX2/FMA at run
+// time) is several times faster than Eigen's portable SSE2 build.
 extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
                        const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 
