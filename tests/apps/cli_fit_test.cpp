@@ -381,6 +381,21 @@ TEST_F(CliFit, LandmarkWithoutPartnerIsOneLineExit3) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Three pairs place an un-attached template but cannot drive its plastic strains (9 rows less the 6 rigid
+// motions leave the 6 constant strains free): refused before the work, not mid-fit.
+TEST_F(CliFit, ThreeLandmarksOnAnUnattachedOrganAreRefused) {
+  for (const std::string side : {"template", "scan"}) {
+    MarkerSet set = io::readMarkers(path(side + "_landmarks.mrk.json"));
+    set.markers.resize(3);
+    writeMarkerFile(path(side + "_three.mrk.json"), set.markers);
+  }
+  const std::string out = fresh("three.vtu");
+  const CommandResult r = runVesalius(fitArgs(out, {"--template-landmarks", path("template_three.mrk.json"),
+                                                    "--scan-landmarks", path("scan_three.mrk.json")}));
+  expectOneLine(r, 2, "fit: an un-attached organ needs at least 4 landmark pairs", "(3 cannot");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(CliFit, ExistingOutputIsKeptWithoutForce) {
   const std::string out = fresh("kept.vtu");
   { std::ofstream(out) << "precious"; }

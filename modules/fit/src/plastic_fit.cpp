@@ -34,6 +34,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 
 namespace vesalius::fit {
 namespace {
@@ -155,6 +156,11 @@ Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd&
       springStiffness_(attachmentSpringStiffness(fem_, options.attachmentStiffness, markers.attachmentMaterial.rows())),
       x_(PlasticFem::flatten(x0)), s_(s0 / scale_), attached_(markers.attachmentMaterial.rows() > 0) {
   if (x0.rows() != templ.V.rows()) throw UsageError("fit: starting positions do not match the template");
+  // Un-attached, the landmark stage's 3 rows per pair, less the 6 rigid motions the gauge takes, must fix
+  // the 6 constant plastic strains that ½||L s||² leaves free.
+  if (!attached_ && markers.scanLandmarks.rows() > 0 && markers.scanLandmarks.rows() < 4)
+    throw UsageError("fit: an un-attached organ needs at least 4 landmark pairs, or none (" +
+                     std::to_string(markers.scanLandmarks.rows()) + " cannot fix its plastic strain)");
   if (attached_) {
     attachments_ = embedMaterialPoints(restV_, templ.T, scale_ * markers.attachmentMaterial, markers.attachmentTargets,
                                        options.attachmentWeight);
@@ -240,10 +246,11 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
     lin.dampingScale = lin.Z.squaredNorm() / 6.0;  // D restricted to constant fields is #T · I
   } else {
     lin.gradient = smoothGradient + lin.Z.transpose() * lin.r;
-    lin.woodbury = std::make_unique<WoodburySolver>(base_, lin.Z);
     lin.dampingScale = lin.Z.squaredNorm() / (9.0 * Lsc_.squaredNorm() + 6.0);  // trace(D) = Σ ξ² ||Lsc||² + 6
   }
   lin.dampingScale = std::max(lin.dampingScale, 1e-12);
+  if (!stage.constantStrain)  // factored once, at the damping of its first direction
+    lin.woodbury = std::make_unique<WoodburySolver>(base_, lin.Z, damping_ * lin.dampingScale);
   lin.f0 = objective(stage.markers, s_, x_);
   return lin;
 }

@@ -42,12 +42,12 @@ Eigen::MatrixXd multiplyTransposed(const Eigen::MatrixXd& Z, const Eigen::Matrix
 
 }  // namespace
 
-WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z)
+WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z, double mu)
     : base_(&base), Z_(std::move(Z)), psi_(plasticLaplacianNullspace(base.tetCount())) {
   if (Z_.cols() != 6 * base.tetCount()) throw BadInput("", "Woodbury solver: Z has the wrong number of columns");
   smooth_ = base.sandwich(Z_);
   Zpsi_ = multiply(Z_, psi_);
-  setDamping(0.0);
+  setDamping(mu);
 }
 
 // With damping μ, H_μ = (1+μ) L² + μ Σψψᵀ + ZᵀZ = B_μ + ẐᵀẐ for B_μ = (1+μ) L² − Σψψᵀ and
@@ -56,6 +56,8 @@ WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd
 //   [ −√(1+μ) (Zψ)ᵀ                     −μ I       ]   (μ = 0: eq. 14's, with a zero ψψ block).
 void WoodburySolver::setDamping(double mu) {
   if (!(mu >= 0.0)) throw BadInput("", "Woodbury solver: damping must be >= 0");
+  if (factored_ && mu == mu_) return;
+  factored_ = false;
   mu_ = mu;
   const Index C = Z_.rows();
   const double root = std::sqrt(1.0 + mu);
@@ -72,6 +74,7 @@ void WoodburySolver::setDamping(double mu) {
   capacitanceLu_.compute(scale_.asDiagonal() * capacitance_ * scale_.asDiagonal());
   if (!(capacitanceLu_.rcond() > 1e-14))
     throw NumericalFailure("Woodbury solver: H = L² + ZᵀZ is singular (Z does not constrain the plastic strain nullspace)");
+  factored_ = true;
 }
 
 Eigen::MatrixXd WoodburySolver::solveOnce(const Eigen::MatrixXd& h) const {

@@ -23,11 +23,13 @@ namespace vesalius::fit {
 class WoodburySolver {
  public:
   // base: factored once per mesh and must outlive this solver. Z: #C by 6#T (rows tet-major), kept for
-  // the solves; pass it with std::move. Throws BadInput on a size mismatch, NumericalFailure if the
-  // capacitance matrix is singular (H is singular: Z does not constrain the nullspace ψ of L).
-  WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z);
+  // the solves; pass it with std::move. mu: the first damping (see setDamping). Throws BadInput on a size
+  // mismatch, NumericalFailure if the capacitance matrix is singular (with μ = 0: H is singular, Z does
+  // not constrain the nullspace ψ of L, as with fewer landmarks than an un-attached object's rigid motions).
+  WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z, double mu = 0.0);
 
-  // Solves with H + μ (L² + Σψψᵀ) from now on (μ ≥ 0; 0 at construction). Cheap: (#C + 6)² work.
+  // Solves with H + μ (L² + Σψψᵀ) from now on (μ ≥ 0): one LU of the (#C + 6)² capacitance matrix,
+  // nothing when μ is the current damping.
   void setDamping(double mu);
 
   // h: 6#T by K. Returns H⁻¹h (6#T by K): two base solves on K columns plus products with Z, refined
@@ -53,6 +55,7 @@ class WoodburySolver {
   Eigen::MatrixXd smooth_;  // Z (L²)⁺ Zᵀ, #C by #C: the expensive part, computed once
   Eigen::MatrixXd Zpsi_;    // Z ψ, #C by 6
   double mu_ = 0.0;
+  bool factored_ = false;  // the LU is that of mu_
   Eigen::MatrixXd capacitance_;  // I + Ẑ B⁻¹ Ẑᵀ, kept for the residual check
   Eigen::VectorXd scale_;        // equilibration: the LU is of diag(scale) capacitance diag(scale)
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitanceLu_;
