@@ -4,6 +4,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/body_axes.h"
+#include "vesalius/io/makehuman_uv.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/skeleton_io.h"
@@ -169,9 +170,11 @@ void runFullBody(const FullBodyOptions& o) {
   const std::string base = o.baseMesh.empty() ? (fs::path(o.skeleton).parent_path() / "base.obj").string() : o.baseMesh;
   ReferenceAnatomy anatomy;
   anatomy.name = "full body (" + fs::path(o.skin).filename().string() + ", " + fs::path(o.model).filename().string() + ")";
+  const TriMesh baseMesh = io::readTriMesh(base);
   anatomy.skin = io::readTriMesh(o.skin);
+  if (anatomy.skin.UV.rows() == 0) anatomy.skin = io::withMakeHumanUv(std::move(anatomy.skin), baseMesh, base);
   anatomy.skin.V = io::transformPoints(anatomy.skin.V, io::yUpToLps(), 100.0);
-  const Skeleton rig = io::transformSkeleton(io::readMakeHumanSkeleton(o.skeleton, io::readTriMesh(base).V), io::yUpToLps(), 100.0);
+  const Skeleton rig = io::transformSkeleton(io::readMakeHumanSkeleton(o.skeleton, baseMesh.V), io::yUpToLps(), 100.0);
   std::map<std::string, Eigen::Vector3d> joints = transfer::jointPositions(rig);
   for (const char* name : {"upperleg01.L", "foot.L", "upperleg01.R", "foot.R"})
     if (!joints.count(name)) throw BadInput(o.skeleton, std::string("no joint '") + name + "' (a MakeHuman default rig is needed)");
@@ -241,7 +244,7 @@ void addReferenceCommand(CLI::App& app) {
   CLI::App* full = cmd->add_subcommand("full-body", "Reference anatomy from a MakeHuman skin with an OpenSim skeleton placed inside it");
   full->add_option("--skin", f->skin, "MakeHuman body (.obj, decimetres, +Y up)")->required();
   full->add_option("--skeleton", f->skeleton, "MakeHuman default rig (.mhskel)")->required();
-  full->add_option("--base-mesh", f->baseMesh, "MakeHuman base.obj for the rig (default: beside it)");
+  full->add_option("--base-mesh", f->baseMesh, "MakeHuman base.obj for the rig, and the uv of a skin without them (default: beside the rig)");
   full->add_option("--model", f->model, "OpenSim model (.osim) with its Geometry folder beside it")->required();
   full->add_option("--out", f->out, "Reference folder to write")->required();
   addCommonOptions(*full, f->common);

@@ -213,6 +213,17 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const ReferenceAnatomy reference = io::readReferenceAnatomy(dir + "/reference");
   EXPECT_EQ(reference.tissues.size(), 81u);
   EXPECT_EQ(reference.points.size(), 288u);
+  // MakeHuman's uv come with the skin, so the fat editor can write its texture (seed 000 §5-6): 0.4 of the
+  // 50 mm maximum over the pelvis, nothing where no bone was given an amount.
+  EXPECT_EQ(reference.skin.FUV.rows(), reference.skin.F.rows());
+  { std::ofstream(dir + "/amounts.json") << R"({"pelvis": 0.4})"; }
+  const CommandResult edited = runVesalius({"fat", "edit", "--reference", dir + "/reference", "--amounts",
+                                            dir + "/amounts.json", "--out", dir + "/fat.nrrd", "--progress", "none"});
+  ASSERT_EQ(edited.exitCode, 0) << edited.err;
+  const Image texture = io::readScan(dir + "/fat.nrrd");
+  const auto [least, most] = std::minmax_element(texture.values.begin(), texture.values.end());
+  EXPECT_GE(*least, 0.0f);
+  EXPECT_NEAR(*most, 20.0f, 0.5f);
   const CommandResult r = runVesalius({"transfer", "--reference", dir + "/reference", "--target-skin",
                                        body + "shapes/mh_male_young_thin_body.obj", "--space", "makehuman",
                                        "--voxel-size", "6", "--out", dir + "/out", "--report", dir + "/out.json",
