@@ -7,6 +7,7 @@
 // the label's whole boundary to the fitted surface (not only at the markers), the attachments, the
 // volume against the label's, and the mesh (no inverted tet).
 #include "run_command.h"
+#include "test_data.h"
 
 #include "vesalius/core/markers.h"
 #include "vesalius/core/triangle_tree.h"
@@ -29,9 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCt = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/";
-const std::string kLabels = kCt + "example_seg_total_v1_for_example_ct.nii.gz";
-const std::string kTable = kCt + "labels_total_v1.tsv";
 const std::string kTemplate = std::string(VESALIUS_TESTDATA) + "/muscles/VHF_Left_Muscle_GluteusMedius_smooth.stl";
 
 std::string path(const std::string& name) {
@@ -53,7 +51,7 @@ void run(const std::vector<std::string>& args) {
 }
 
 void sampleBoundary(int count, int seed, const std::string& out) {
-  run({"markers", "sample", "--labels", kLabels, "--table", kTable, "--label", "gluteus_medius_left", "--count",
+  run({"markers", "sample", "--labels", kCtLabels, "--table", kCtLabelTable, "--label", "gluteus_medius_left", "--count",
        std::to_string(count), "--seed", std::to_string(seed), "--out", out, "--progress", "none", "--force"});
 }
 
@@ -65,7 +63,7 @@ MatrixX3d positions(const std::string& markerFile) {
 }
 
 double labelVolumeMm3(const std::string& name) {
-  const LabelMap map = io::readLabelMap(kLabels, kTable);
+  const LabelMap map = io::readLabelMap(kCtLabels, kCtLabelTable);
   const Label id = map.table.find(name)->id;
   const Eigen::Vector3d h = map.labels.geometry.spacing;
   return double(std::count(map.labels.values.begin(), map.labels.values.end(), id)) * h.prod();
@@ -74,7 +72,7 @@ double labelVolumeMm3(const std::string& name) {
 TEST(CliFitCt, GluteusMediusAttachedToTheHipBone) {
   const std::string bone = path("hip_left.vtp"), icp = path("gmed_icp.mrk.json"), check = path("gmed_check.mrk.json"),
                     out = path("gmed_fitted.vtu"), surface = path("gmed_fitted.vtp"), report = path("gmed_fit.json");
-  run({"surface", "--labels", kLabels, "--table", kTable, "--label", "hip_left", "--out", bone, "--progress", "none",
+  run({"surface", "--labels", kCtLabels, "--table", kCtLabelTable, "--label", "hip_left", "--out", bone, "--progress", "none",
        "--force"});
   sampleBoundary(150, 1, icp);
   sampleBoundary(1000, 2, check);
@@ -105,7 +103,7 @@ TEST(CliFitCt, GluteusMediusAttachedToTheHipBone) {
   double sum = 0;
   for (const ClosestPoint& c : tree.closest(boundary)) sum += std::sqrt(c.squaredDistance);
   const double meanDistance = sum / double(boundary.rows());
-  const double voxel = io::readLabelMap(kLabels, kTable).labels.geometry.spacing.maxCoeff();
+  const double voxel = io::readLabelMap(kCtLabels, kCtLabelTable).labels.geometry.spacing.maxCoeff();
   RecordProperty("boundary_to_fitted_mean_mm", std::to_string(meanDistance));
   EXPECT_LT(meanDistance, voxel);
 

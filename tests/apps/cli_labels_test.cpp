@@ -1,6 +1,7 @@
 // `vesalius labels` end to end on the TotalSegmentator map of the test CT (3 mm voxels): each action's
 // voxels against the input's, world positions kept by crop, and one-line refusals that write nothing.
 #include "run_command.h"
+#include "test_data.h"
 
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/label_ops.h"
@@ -16,13 +17,10 @@ namespace {
 namespace fs = std::filesystem;
 namespace seg = segmentation;
 
-const std::string kData = VESALIUS_TESTDATA;
-const std::string kLabels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
-const std::string kTable = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
 constexpr Label kLiver = 5, kPancreas = 10, kL4 = 19, kHipLeft = 90, kHipRight = 91, kSacrum = 92;
 
 const LabelMap& input() {
-  static const LabelMap map = io::readLabelMap(kLabels, kTable);
+  static const LabelMap map = io::readLabelMap(kCtLabels, kCtLabelTable);
   return map;
 }
 
@@ -37,7 +35,7 @@ std::string outputPath(const std::string& name) {
 // `vesalius labels ACTION --labels <the test map> --table <its table> ARGS --out OUT`, which must succeed.
 LabelMap runLabels(const std::string& action, std::vector<std::string> args, const std::string& out,
                    std::string* printed = nullptr) {
-  args.insert(args.begin(), {"labels", action, "--labels", kLabels, "--table", kTable});
+  args.insert(args.begin(), {"labels", action, "--labels", kCtLabels, "--table", kCtLabelTable});
   args.insert(args.end(), {"--out", out, "--progress", "none"});
   const CommandResult r = runVesalius(args);
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -227,9 +225,9 @@ TEST(CliLabels, CropKeepsEveryLiverVoxelWhereItWas) {
 TEST(CliLabels, UnknownLabelIsRefusedByName) {
   const std::string out = outputPath("unknown.nii.gz");
   const CommandResult r = runVesalius(
-      {"labels", "extract", "--labels", kLabels, "--table", kTable, "--label", "appendix_vermiformis", "--out", out});
+      {"labels", "extract", "--labels", kCtLabels, "--table", kCtLabelTable, "--label", "appendix_vermiformis", "--out", out});
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_EQ(r.err, "vesalius: " + kLabels +
+  EXPECT_EQ(r.err, "vesalius: " + kCtLabels +
                        ": no label 'appendix_vermiformis' (neither an id nor a name in its "
                        "label table)\n");
   EXPECT_FALSE(fs::exists(out));
@@ -238,17 +236,17 @@ TEST(CliLabels, UnknownLabelIsRefusedByName) {
 TEST(CliLabels, LabelWithoutVoxelsIsRefused) {
   const std::string out = outputPath("empty.nii.gz");
   const CommandResult r =
-      runVesalius({"labels", "fill", "--labels", kLabels, "--table", kTable, "--label", "777", "--out", out});
+      runVesalius({"labels", "fill", "--labels", kCtLabels, "--table", kCtLabelTable, "--label", "777", "--out", out});
   EXPECT_EQ(r.exitCode, 3);
-  EXPECT_EQ(r.err, "vesalius: " + kLabels + ": no voxel has label 777\n");
+  EXPECT_EQ(r.err, "vesalius: " + kCtLabels + ": no voxel has label 777\n");
   EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(CliLabels, OutputOverTheInputIsRefused) {
   // A copy of the map with its table beside it, so the input could be replaced if it were not refused.
   const std::string copy = outputPath("copy.nii.gz");
-  fs::copy_file(kLabels, copy);
-  fs::copy_file(kTable, io::labelTableSidecarPath(copy));
+  fs::copy_file(kCtLabels, copy);
+  fs::copy_file(kCtLabelTable, io::labelTableSidecarPath(copy));
   const auto size = fs::file_size(copy);
   for (const std::string& out : {copy, (fs::path(outputDir()) / "copy.nrrd").string()}) {
     const CommandResult r =
@@ -273,7 +271,7 @@ TEST_P(LabelsRefuses, WithOneLine) {
   const std::string out = outputPath("refused.nii.gz");
   std::vector<std::string> args{"labels"};
   args.insert(args.end(), GetParam().args.begin(), GetParam().args.end());
-  args.insert(args.end(), {"--labels", kLabels, "--table", kTable, "--out", out});
+  args.insert(args.end(), {"--labels", kCtLabels, "--table", kCtLabelTable, "--out", out});
   const CommandResult r = runVesalius(args);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_EQ(r.err, "vesalius: " + GetParam().error + "\n");

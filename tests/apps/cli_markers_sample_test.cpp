@@ -3,6 +3,7 @@
 // voxel faces between liver and not-liver), none on the cap where the scan cuts the liver, in LPS, spread
 // evenly, the same for the same seed; a bad --label and an existing output are refused in one line.
 #include "run_command.h"
+#include "test_data.h"
 
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/image_io.h"
@@ -25,9 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCt = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/";
-const std::string kLabels = kCt + "example_seg_total_v1_for_example_ct.nii.gz";
-const std::string kTable = kCt + "labels_total_v1.tsv";
 constexpr Label kLiver = 5;
 
 std::string outputPath(const std::string& name) {
@@ -45,7 +43,7 @@ std::string readText(const std::string& path) {
 }
 
 CommandResult sample(const std::string& label, const std::string& out, std::vector<std::string> more = {}) {
-  std::vector<std::string> args{"markers", "sample", "--labels", kLabels, "--table", kTable, "--label", label,
+  std::vector<std::string> args{"markers", "sample", "--labels", kCtLabels, "--table", kCtLabelTable, "--label", label,
                                 "--out", out, "--progress", "none"};
   args.insert(args.end(), more.begin(), more.end());
   return runVesalius(args);
@@ -123,7 +121,7 @@ TEST(CliMarkersSample, LiverMarkersLieOnTheLiverBoundary) {
   // markers spread on it the largest distance measured is 1.67 mm (median 0.42 mm), for 150 markers and
   // seeds 1..7 1.34-1.65 mm (median 0.35-0.48 mm). We assert 2 mm (two thirds of a 3 mm voxel) and a median
   // under 0.75 mm. Both are in LPS: a RAS file (x and y negated) would be centimetres off.
-  const LabelMap map = io::readLabelMap(kLabels, kTable);
+  const LabelMap map = io::readLabelMap(kCtLabels, kCtLabelTable);
   const std::vector<double> toSurface = distances(meshing::labelSurface(map, kLiver), P);
   std::vector<double> toVoxels = distances(voxelBoundary(map.labels, kLiver), P);
   std::sort(toVoxels.begin(), toVoxels.end());
@@ -172,10 +170,10 @@ TEST(CliMarkersSample, BadLabelIsOneLineAndWritesNothing) {
   const std::string out = outputPath("bad.mrk.json");
   const CommandResult unknown = sample("livr", out);
   EXPECT_EQ(unknown.exitCode, 2);
-  EXPECT_EQ(unknown.err, "vesalius: " + kLabels + ": no label 'livr' (neither an id nor a name in its label table)\n");
+  EXPECT_EQ(unknown.err, "vesalius: " + kCtLabels + ": no label 'livr' (neither an id nor a name in its label table)\n");
   const CommandResult empty = sample("brain", out);  // in the table, but not in this abdomen scan
   EXPECT_EQ(empty.exitCode, 3);
-  EXPECT_EQ(empty.err, "vesalius: " + kLabels + ": label 'brain' (50) has no voxels\n");
+  EXPECT_EQ(empty.err, "vesalius: " + kCtLabels + ": label 'brain' (50) has no voxels\n");
   EXPECT_FALSE(fs::exists(out));
 }
 

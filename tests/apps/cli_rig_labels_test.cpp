@@ -5,6 +5,7 @@
 // their bone. A map
 // without a femur is refused in one line.
 #include "run_command.h"
+#include "test_data.h"
 
 #include "vesalius/core/skeleton.h"
 #include "vesalius/core/tet_quality.h"
@@ -29,9 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kData = VESALIUS_TESTDATA;
-const std::string kCtLabels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
-const std::string kCtTable = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
 
 std::string dir(const std::string& name) {
   const fs::path d = fs::path(VESALIUS_TEST_OUTPUT) / "rig-labels" / name;
@@ -123,12 +121,12 @@ void checkRig(const std::string& rig) {
 TEST(CliRigLabels, CtBonesRiggedFromTheirLabelsMoveRigidlyWhenTheHipsFlex) {
   const std::string rig = dir("ct-rig");
   auto start = std::chrono::steady_clock::now();
-  CommandResult r = runVesalius({"rig", "--labels", kCtLabels, "--label-table", kCtTable, "--target-tets", "15000",
+  CommandResult r = runVesalius({"rig", "--labels", kCtLabels, "--label-table", kCtLabelTable, "--target-tets", "15000",
                                  "--out", rig});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::cout << r.out << "rig: " << seconds(start) << " s\n";
   checkRig(rig);
-  const LabelMap rest = io::readLabelMap(kCtLabels, kCtTable);
+  const LabelMap rest = io::readLabelMap(kCtLabels, kCtLabelTable);
   const Motion restSkeleton = io::readBvh(rig + "/skeleton.bvh");
   const std::vector<std::pair<std::string, std::string>> boneJoint{
       {"femur_left", "femur_left"},     {"femur_right", "femur_right"},   {"hip_left", "pelvis"},
@@ -142,7 +140,7 @@ TEST(CliRigLabels, CtBonesRiggedFromTheirLabelsMoveRigidlyWhenTheHipsFlex) {
                      method, "--labels", kCtLabels, "--out", out});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::cout << r.out << "pose " << method << ": " << seconds(start) << " s\n";
-    const LabelMap posed = io::readLabelMap(out + "/" + fs::path(kCtLabels).filename().string(), kCtTable);
+    const LabelMap posed = io::readLabelMap(out + "/" + fs::path(kCtLabels).filename().string(), kCtLabelTable);
     const auto restWorld = restSkeleton.worldPose(0), posedWorld = io::readBvh(out + "/skeleton.bvh").worldPose(0);
     for (const auto& [bone, joint] : boneJoint) {
       const int j = restSkeleton.skeleton.find(joint);
@@ -158,7 +156,7 @@ TEST(CliRigLabels, CtBonesRiggedFromTheirLabelsMoveRigidlyWhenTheHipsFlex) {
 }
 
 TEST(CliRigLabels, AMapWithoutAFemurIsRefusedInOneLineNamingIt) {
-  LabelMap map = io::readLabelMap(kCtLabels, kCtTable);
+  LabelMap map = io::readLabelMap(kCtLabels, kCtLabelTable);
   const Label femur = map.table.resolve("femur_left");
   for (Label& l : map.labels.values)
     if (l == femur) l = 0;
@@ -167,7 +165,7 @@ TEST(CliRigLabels, AMapWithoutAFemurIsRefusedInOneLineNamingIt) {
   const std::string labels = d + "/no_femur_left.nii.gz";
   io::writeLabelMap(labels, map);
   const CommandResult r =
-      runVesalius({"rig", "--labels", labels, "--label-table", kCtTable, "--out", d + "/rig"});
+      runVesalius({"rig", "--labels", labels, "--label-table", kCtLabelTable, "--out", d + "/rig"});
   EXPECT_NE(r.exitCode, 0);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   expectContains(r.err, labels);

@@ -7,6 +7,7 @@
 #include "vesalius/io/label_table_io.h"
 
 #include "expect_bad_input.h"
+#include "test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -21,9 +22,9 @@ namespace fs = std::filesystem;
 
 const std::string kData = VESALIUS_TESTDATA;
 const std::string kHeadMri = kData + "/head-mri/ch2.nii.gz";
-const std::string kCt = kData + "/ct-abdomen-pelvis/example_ct.nii.gz";
-const std::string kCtLabels = kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
-const std::string kCtLabelTable = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
+using test::kCtLabels;
+using test::kCtLabelTable;
+using test::kCtScan;
 const std::string kObliqueCt = kData + "/oblique-ct/CT_pitch.nii.gz";
 const std::string kJpeg2000Series = kData + "/dicom/ct-series-jpeg2000";
 const std::string kThreeSlices = kData + "/dicom/ct-3slice-dcmqi/ct-3slice";
@@ -66,7 +67,7 @@ TEST(ImageIo, HeadMriIsUint8At1mm) {
 }
 
 TEST(ImageIo, AbdomenCtIsInt32HounsfieldAt3mm) {
-  const Image image = readScan(kCt);
+  const Image image = readScan(kCtScan);
   EXPECT_EQ(image.geometry.size, Eigen::Vector3i(122, 101, 112));
   EXPECT_TRUE(image.geometry.spacing.isApprox(Eigen::Vector3d(3, 3, 3), 1e-6));
   EXPECT_EQ(image.fileType, PixelType::Int32);
@@ -82,7 +83,7 @@ TEST(ImageIo, AbdomenCtIsInt32HounsfieldAt3mm) {
 }
 
 TEST(ImageIo, DescribeScanGivesHeaderAndValueRange) {
-  const ScanInfo info = describeScan(kCt);
+  const ScanInfo info = describeScan(kCtScan);
   EXPECT_EQ(info.format, "NIfTI");
   EXPECT_EQ(info.geometry.size, Eigen::Vector3i(122, 101, 112));
   EXPECT_EQ(info.pixelType, PixelType::Int32);
@@ -98,7 +99,7 @@ class ImageRoundTrip : public ::testing::TestWithParam<std::string> {};
 TEST_P(ImageRoundTrip, KeepsGeometryValuesAndStoredType) {
   const fs::path folder = freshOutputFolder("round_trip" + std::string(GetParam()).replace(0, 1, "_"));
   const std::string path = (folder / ("ct" + GetParam())).string();
-  const Image original = readScan(kCt);
+  const Image original = readScan(kCtScan);
   writeScan(path, original);
   const Image copy = readScan(path);
   expectSameGeometry(copy.geometry, original.geometry);
@@ -117,7 +118,7 @@ INSTANTIATE_TEST_SUITE_P(EveryWritableFormat, ImageRoundTrip,
 
 TEST(ImageIo, DetachedHeaderAndDataFileGetFinalNames) {
   const fs::path folder = freshOutputFolder("detached_names");
-  const Image original = readScan(kCt);
+  const Image original = readScan(kCtScan);
   writeScan((folder / "ct.nhdr").string(), original);
   writeScan((folder / "ct.mhd").string(), original);
   EXPECT_EQ(folderEntries(folder), (std::vector<std::string>{"ct.mhd", "ct.nhdr", "ct.raw.gz", "ct.zraw"}));
@@ -143,7 +144,7 @@ TEST(ImageIo, ObliqueDirectionSurvivesRoundTrip) {
 TEST(ImageIo, ExistingOutputIsKeptUnlessForced) {
   const fs::path folder = freshOutputFolder("no_clobber");
   const std::string path = (folder / "ct.nii.gz").string();
-  Image image = readScan(kCt);
+  Image image = readScan(kCtScan);
   writeScan(path, image);
   const auto written = fs::last_write_time(path);
   image.values.assign(image.values.size(), 0.0f);
@@ -162,7 +163,7 @@ TEST(ImageIo, FailedWriteLeavesNoFile) {
 
 TEST(ImageIo, UnknownOutputExtensionIsAUsageError) {
   const fs::path folder = freshOutputFolder("bad_output_extension");
-  EXPECT_THROW(writeScan((folder / "ct.png").string(), readScan(kCt)), UsageError);
+  EXPECT_THROW(writeScan((folder / "ct.png").string(), readScan(kCtScan)), UsageError);
 }
 
 TEST(ImageIo, Jpeg2000DicomSeriesDecodes) {
@@ -216,7 +217,7 @@ TEST(ImageIo, TotalSegmentatorV1LabelMapConvertsFromFloat64) {
   ASSERT_NE(labelMap.table.find("liver"), nullptr);
   EXPECT_EQ(labelMap.table.find("liver")->id, 5);
   EXPECT_EQ(labelMap.table.find(88)->name, "femur_left");
-  expectSameGeometry(labelMap.labels.geometry, readScan(kCt).geometry);
+  expectSameGeometry(labelMap.labels.geometry, readScan(kCtScan).geometry);
 }
 
 TEST(ImageIo, TotalSegmentatorTablesRead) {
