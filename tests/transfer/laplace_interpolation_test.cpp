@@ -1,5 +1,6 @@
 // Laplace interpolation (seed 000 §7): discretely harmonic functions are reproduced, the solvers agree,
-// V-cycles contract, bad set-ups are refused, and threads do not change the result.
+// V-cycles contract, bad set-ups are refused, and neither threads nor solving three fields at once
+// change the result.
 #include "vesalius/transfer/laplace_interpolation.h"
 
 #include "vesalius/core/error.h"
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -298,5 +300,40 @@ TEST(LaplaceInterpolation, ResultsDoNotDependOnTheThreadCount) {
       if (roles[v] != CellRole::Excluded) {
         ASSERT_EQ(one.values[v], two.values[v]) << "solver " << int(solver);
       }
+  }
+}
+
+// The 3-wide solve carries its own α, β and stopping per field, so each field must come out bitwise as
+// when solved alone — including a field that starts close to its solution and stops iterations earlier
+// than the others, and one whose fixed values are all zero.
+TEST(LaplaceInterpolation, ThreeFieldsAtOnceGiveBitwiseTheSingleSolves) {
+  const GridGeometry g = boxGeometry(36, Eigen::Vector3d(1, 1.2, 1.5));
+  const auto roles = ballRoles(g, 16);
+  const Function f = [](const Eigen::Vector3d& x) {
+    return std::sin(x.x() / 6) * std::cos(x.z() / 4) + 0.1 * x.y() * x.y();
+  };
+  const Function zero = [](const Eigen::Vector3d&) { return 0.0; };
+  const Grid<double> nearSolution = solved(g, roles, f, LaplaceSolver::ConjugateGradient, 1e-5);
+  for (LaplaceSolver solver : kSolvers) {
+    LaplaceOptions options;
+    options.solver = solver;
+    LaplaceInterpolator interpolator(g, roles, options);
+    const std::array<Grid<double>, 3> start = {boundaryField(g, roles, f, 0.5), nearSolution,
+                                               boundaryField(g, roles, zero, 0.5)};
+    std::array<Grid<double>, 3> together = start;
+    const std::array<LaplaceSolveInfo, 3> info = interpolator.solve(together);
+    EXPECT_LT(info[1].iterations, info[0].iterations) << "solver " << int(solver);  // they stop apart
+    EXPECT_EQ(info[2].iterations, 0);
+    for (int c = 0; c < 3; ++c) {
+      Grid<double> alone = start[c];
+      const LaplaceSolveInfo single = interpolator.solve(alone);
+      EXPECT_EQ(single.iterations, info[c].iterations) << "solver " << int(solver) << " field " << c;
+      EXPECT_EQ(single.residualHistory, info[c].residualHistory) << "solver " << int(solver) << " field " << c;
+      EXPECT_EQ(single.relativeResidual, info[c].relativeResidual);
+      for (std::size_t v = 0; v < roles.size(); ++v)
+        if (roles[v] != CellRole::Excluded) {
+          ASSERT_EQ(alone.values[v], together[c].values[v]) << "solver " << int(solver) << " field " << c;
+        }
+    }
   }
 }

@@ -110,8 +110,8 @@ DisplacementField interpolateDisplacements(const Grid<std::uint8_t>& domain, con
     for (std::int64_t c = 0; c < g.voxelCount(); ++c)
       if (field.roles[c] != CellRole::Free) field.components[a].values[c] = 0.0;
     writeConstraintValues(constraints, a, field.components[a]);
-    field.solves[a] = laplace.solve(field.components[a]);
   }
+  field.solves = laplace.solve(field.components);
   extrapolate(field.roles, options.extrapolationLayers, field.components);
   return field;
 }

@@ -1,25 +1,41 @@
-// Laplace interpolation (seed 000 §7): matrix-free multigrid and CG on a padded grid.
+// Laplace interpolation (seed 000 §7): matrix-free multigrid and CG on a padded grid, for C fields with the
+// same cell roles at once (C = 1, or 3 for the components of a displacement).
 //
-// Invariant that keeps the kernels branch-light: every vector is indexed like a level's padded cell array
-// (one ghost layer on each side) and is zero at every cell that is not Free — ghosts, Excluded cells and
-// Fixed cells, whose values were moved into the right-hand side. The stencil can then sum all six
-// neighbours without asking what they are; only the diagonal knows which neighbours count.
+// Invariants that keep the kernels branch-light and their memory traffic low:
+//  - Every vector is indexed like a level's padded cell array (one ghost layer on each side) with C values
+//    per cell, interleaved (field c of cell p at C·p + c), so one pass over the roles and coefficients
+//    serves all fields. Vectors are zero at every cell that is not Free — ghosts, Excluded cells and Fixed
+//    cells, whose values were moved into the right-hand side — so the stencil sums all six neighbours
+//    without asking what they are; only the diagonal knows which neighbours count.
+//  - Kernels visit each row only from its first to its last Free cell, so the outside of a body (about
+//    half of its bounding grid) costs no memory traffic. Cells outside these spans are never written.
+//  - Each field's values come from the same operations in the same order whatever C and the thread count
+//    are, and a field stops iterating at its own tolerance: solving three fields together gives bitwise
+//    the fields solved one at a time.
 #include "vesalius/transfer/laplace_interpolation.h"
 
 #include "vesalius/core/error.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 namespace vesalius::transfer {
 namespace {
 
 using Vec = std::vector<double>;
+template <int C>
+using Sums = std::array<double, C>;
+template <int C>
+using Flags = std::array<bool, C>;
+
+struct Span {
+  int begin = 0, end = 0;  // [begin, end) along i
+};
 
 struct Level {
   Eigen::Vector3i n = Eigen::Vector3i::Zero();  // cells per axis
@@ -27,15 +43,21 @@ struct Level {
   Eigen::Vector3d w = Eigen::Vector3d::Ones();  // 1 / h², the stencil's weight per axis
   std::int64_t sy = 0, sz = 0;                  // padded strides of j and k (i's is 1)
   std::vector<CellRole> role;                   // padded; ghosts are Excluded
+  std::vector<Span> span;                       // per row j + n.y·k: from its first to past its last Free cell
   Vec diag;                                     // Σ w · coupling over the neighbours at Free cells, else 0
-  Vec x, b, r;                                  // V-cycle work: correction, right-hand side, residual
   std::vector<std::int64_t> band[2];            // Free cells near a Fixed one, by colour
-  Vec restricted;                               // coarse levels: P_trilinearᵀ r / 8 at every cell
-  Vec ghost;  // coarse levels: per Free cell and side (6), the factor it extrapolates into a non-Free neighbour
+  // Coarse levels only.
+  Vec ghost;  // per Free cell and side (6), the factor it extrapolates into a non-Free neighbour
+  std::vector<std::int64_t> halo;            // non-Free cells (ghosts included) with a Free face neighbour
+  std::vector<std::uint8_t> freeNeighbours;  // per padded cell
+  std::vector<Span> restrictSpan;  // per padded row (J, K from −1): the cells whose window holds fine Free cells
+  // Work vectors, C values per cell: correction, right-hand side, residual, P_trilinearᵀ r / 8.
+  Vec x, b, r, restricted;
 
   std::int64_t at(int i, int j, int k) const { return (i + 1) + sy * (j + 1) + sz * (k + 1); }
   std::int64_t paddedCount() const { return sz * (n.z() + 2); }
   bool isFree(std::int64_t p) const { return role[p] == CellRole::Free; }
+  const Span& rowSpan(int j, int k) const { return span[j + std::int64_t(n.y()) * k]; }
   Eigen::Vector3i indexOf(std::int64_t p) const {
     return {int(p % sy) - 1, int((p / sy) % (n.y() + 2)) - 1, int(p / sz) - 1};
   }
@@ -52,43 +74,69 @@ Level makeLevel(const Eigen::Vector3i& n, const Eigen::Vector3d& h) {
   return L;
 }
 
-// Calls f(j, k, padded index of (0, j, k)) for every row of the level, rows in parallel.
-template <class F>
-void forEachRow(const Level& L, const F& f) {
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, L.n.z(), 0, L.n.y()), [&](const tbb::blocked_range2d<int>& r) {
-    for (int k = r.rows().begin(); k < r.rows().end(); ++k)
-      for (int j = r.cols().begin(); j < r.cols().end(); ++j) f(j, k, L.at(0, j, k));
+void computeSpans(Level& L) {
+  L.span.assign(std::size_t(L.n.y()) * L.n.z(), Span{});
+  tbb::parallel_for(0, L.n.z(), [&](int k) {
+    for (int j = 0; j < L.n.y(); ++j) {
+      Span& s = L.span[j + std::int64_t(L.n.y()) * k];
+      const std::int64_t row = L.at(0, j, k);
+      s.begin = 0, s.end = L.n.x();
+      while (s.begin < s.end && !L.isFree(row + s.begin)) ++s.begin;
+      while (s.end > s.begin && !L.isFree(row + s.end - 1)) --s.end;
+    }
   });
 }
 
-// Fixed-size chunks, independent of the thread count, so that reductions sum in the same order always.
-constexpr std::int64_t kChunk = 1 << 14;
-
+// Calls f(j, k, padded index of (0, j, k), span) for every row with Free cells, planes in parallel.
 template <class F>
-void forEachChunk(std::int64_t count, const F& f) {
-  const std::int64_t chunks = (count + kChunk - 1) / kChunk;
-  tbb::parallel_for(std::int64_t(0), chunks, [&](std::int64_t c) { f(c * kChunk, std::min(count, (c + 1) * kChunk)); });
-}
-
-double dot(const Vec& a, const Vec& b) {
-  const std::int64_t count = std::int64_t(a.size());
-  Vec partial((count + kChunk - 1) / kChunk, 0.0);
-  forEachChunk(count, [&](std::int64_t begin, std::int64_t end) {
-    double s = 0;
-    for (std::int64_t p = begin; p < end; ++p) s += a[p] * b[p];
-    partial[begin / kChunk] = s;
+void forEachSpan(const Level& L, const F& f) {
+  tbb::parallel_for(0, L.n.z(), [&](int k) {
+    for (int j = 0; j < L.n.y(); ++j) {
+      const Span s = L.rowSpan(j, k);
+      if (s.begin < s.end) f(j, k, L.at(0, j, k), s);
+    }
   });
-  double sum = 0;
-  for (double s : partial) sum += s;
-  return sum;
 }
 
-double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
-
-inline double neighbourSum(const Level& L, const double* x, std::int64_t p) {
-  return L.w.x() * (x[p - 1] + x[p + 1]) + L.w.y() * (x[p - L.sy] + x[p + L.sy]) +
-         L.w.z() * (x[p - L.sz] + x[p + L.sz]);
+// Σ of what f(row, span, sums) adds over the rows: per plane in parallel, then the planes in order, so
+// the sums are the same for any thread count.
+template <int C, class F>
+Sums<C> sumOverSpans(const Level& L, const F& f) {
+  std::vector<Sums<C>> plane(L.n.z(), Sums<C>{});
+  tbb::parallel_for(0, L.n.z(), [&](int k) {
+    Sums<C> sum{};
+    for (int j = 0; j < L.n.y(); ++j) {
+      const Span s = L.rowSpan(j, k);
+      if (s.begin < s.end) f(L.at(0, j, k), s, sum);
+    }
+    plane[k] = sum;
+  });
+  Sums<C> total{};
+  for (const Sums<C>& s : plane)
+    for (int c = 0; c < C; ++c) total[c] += s[c];
+  return total;
 }
+
+template <int C>
+Sums<C> dot(const Level& L, const Vec& a, const Vec& b) {
+  return sumOverSpans<C>(L, [&](std::int64_t row, Span s, Sums<C>& sum) {
+    for (std::int64_t p = C * (row + s.begin); p < C * (row + s.end); p += C)
+      for (int c = 0; c < C; ++c) sum[c] += a[p + c] * b[p + c];
+  });
+}
+
+// A level's stencil weights and strides (in doubles, for C fields per cell) as plain values, which the
+// kernels keep in registers (a member of the Level could alias the vectors they write).
+template <int C>
+struct Stencil {
+  double wx, wy, wz;
+  std::int64_t sy, sz;
+  explicit Stencil(const Level& L) : wx(L.w.x()), wy(L.w.y()), wz(L.w.z()), sy(C * L.sy), sz(C * L.sz) {}
+  // Σ over the six neighbours of w_a · x, for the value at v.
+  double neighbourSum(const double* v) const {
+    return wx * (v[-C] + v[C]) + wy * (v[-sy] + v[sy]) + wz * (v[-sz] + v[sz]);
+  }
+};
 
 // The coupling of a Free cell of a level with blocks of B×B×B finest cells to its non-Free neighbour on
 // side s (±1) of axis a, in units of w_a. Dirichlet values sit at finest Fixed cell centres, which on a
@@ -126,8 +174,8 @@ void computeDiagonal(Level& L, const Level& finest, int B) {
   L.diag.assign(L.paddedCount(), 0.0);
   if (B > 1) L.ghost.assign(6 * L.paddedCount(), 0.0);
   const std::int64_t offset[3] = {1, L.sy, L.sz};
-  forEachRow(L, [&](int j, int k, std::int64_t row) {
-    for (int i = 0; i < L.n.x(); ++i) {
+  forEachSpan(L, [&](int j, int k, std::int64_t row, Span span) {
+    for (int i = span.begin; i < span.end; ++i) {
       const std::int64_t p = row + i;
       if (!L.isFree(p)) continue;
       for (int a = 0; a < 3; ++a)
@@ -143,33 +191,82 @@ void computeDiagonal(Level& L, const Level& finest, int B) {
   });
 }
 
-// out = A x at Free cells (0 elsewhere).
-void applyOperator(const Level& L, const Vec& x, Vec& out) {
-  forEachRow(L, [&](int, int, std::int64_t row) {
-    for (int i = 0; i < L.n.x(); ++i) {
-      const std::int64_t p = row + i;
-      if (L.isFree(p)) out[p] = L.diag[p] * x[p] - neighbourSum(L, x.data(), p);
+// out = A x at Free cells; returns x · out per field (CG's p · Ap, in the same pass).
+template <int C>
+Sums<C> applyOperator(const Level& L, const Vec& x, Vec& out) {
+  const Stencil<C> stencil(L);
+  return sumOverSpans<C>(L, [&](std::int64_t row, Span s, Sums<C>& sum) {
+    for (std::int64_t p = row + s.begin; p < row + s.end; ++p) {
+      if (!L.isFree(p)) continue;
+      for (int c = 0; c < C; ++c) {
+        const double v = L.diag[p] * x[C * p + c] - stencil.neighbourSum(&x[C * p + c]);
+        out[C * p + c] = v;
+        sum[c] += x[C * p + c] * v;
+      }
     }
   });
 }
 
-void computeResidual(const Level& L, const Vec& x, const Vec& b, Vec& r) {
-  forEachRow(L, [&](int, int, std::int64_t row) {
-    for (int i = 0; i < L.n.x(); ++i) {
-      const std::int64_t p = row + i;
-      if (L.isFree(p)) r[p] = b[p] - (L.diag[p] * x[p] - neighbourSum(L, x.data(), p));
+// r = b − A x at Free cells; returns ‖r‖² per field.
+template <int C>
+Sums<C> computeResidual(const Level& L, const Vec& x, const Vec& b, Vec& r) {
+  const Stencil<C> stencil(L);
+  return sumOverSpans<C>(L, [&](std::int64_t row, Span s, Sums<C>& sum) {
+    for (std::int64_t p = row + s.begin; p < row + s.end; ++p) {
+      if (!L.isFree(p)) continue;
+      for (int c = 0; c < C; ++c) {
+        const double v = b[C * p + c] - (L.diag[p] * x[C * p + c] - stencil.neighbourSum(&x[C * p + c]));
+        r[C * p + c] = v;
+        sum[c] += v * v;
+      }
     }
   });
 }
 
-// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour. They read only cells of the
-// other colour, so the order (and the thread count) does not change the result.
-void smoothColour(const Level& L, Vec& x, const Vec& b, int colour) {
-  forEachRow(L, [&](int j, int k, std::int64_t row) {
-    for (int i = (colour + j + k) & 1; i < L.n.x(); i += 2) {
-      const std::int64_t p = row + i;
-      if (L.isFree(p)) x[p] = (b[p] + neighbourSum(L, x.data(), p)) / L.diag[p];
+// The Gauss–Seidel update of cell p's C values (all computed before any is stored, so that the stores
+// do not force the neighbours to be loaded again).
+template <int C>
+inline void relax(const Stencil<C>& stencil, const Level& L, double* x, const double* b, std::int64_t p) {
+  const double inverse = 1 / L.diag[p];
+  double* v = x + C * p;
+  Sums<C> next;
+  for (int c = 0; c < C; ++c) next[c] = (b[C * p + c] + stencil.neighbourSum(v + c)) * inverse;
+  for (int c = 0; c < C; ++c) v[c] = next[c];
+}
+
+// One Gauss–Seidel half-sweep over plane k's cells with (i + j + k) % 2 == colour.
+template <int C>
+void smoothPlane(const Level& L, Vec& x, const Vec& b, int k, int colour) {
+  const Stencil<C> stencil(L);
+  for (int j = 0; j < L.n.y(); ++j) {
+    const Span s = L.rowSpan(j, k);
+    const std::int64_t row = L.at(0, j, k);
+    for (int i = s.begin + ((s.begin + colour + j + k) & 1); i < s.end; i += 2)
+      if (L.isFree(row + i)) relax<C>(stencil, L, x.data(), b.data(), row + i);
+  }
+}
+
+// A red-black Gauss–Seidel sweep, colour `first` then the other, in one pass over memory instead of
+// two: within a slab of planes, plane k takes the first colour and then plane k − 1 the second (its
+// first-colour neighbours, in planes k − 2 .. k, are final by then). A slab's first and last planes take
+// the second colour after all slabs are through, as their neighbours across the slab's ends belong to
+// other threads. Every update reads only cells of the other colour, in the state two separate
+// half-sweeps would leave them, so the result is bitwise theirs, for any order and thread count.
+template <int C>
+void smoothSweep(const Level& L, Vec& x, const Vec& b, int first) {
+  constexpr int kSlab = 8;  // planes
+  const int slabs = (L.n.z() + kSlab - 1) / kSlab;
+  tbb::parallel_for(0, slabs, [&](int slab) {
+    const int k0 = slab * kSlab, k1 = std::min(L.n.z(), k0 + kSlab);
+    for (int k = k0; k < k1; ++k) {
+      smoothPlane<C>(L, x, b, k, first);
+      if (k - 1 > k0) smoothPlane<C>(L, x, b, k - 1, 1 - first);
     }
+  });
+  tbb::parallel_for(0, slabs, [&](int slab) {
+    const int k0 = slab * kSlab, k1 = std::min(L.n.z(), k0 + kSlab);
+    smoothPlane<C>(L, x, b, k0, 1 - first);
+    if (k1 - 1 > k0) smoothPlane<C>(L, x, b, k1 - 1, 1 - first);
   });
 }
 
@@ -200,49 +297,17 @@ void computeBand(Level& L) {
         if (inBand[L.at(i, j, k)]) L.band[(i + j + k) & 1].push_back(L.at(i, j, k));
 }
 
-// smoothColour restricted to the boundary band; the same independence of order and threads.
+// A half-sweep restricted to the boundary band; the same independence of order and threads.
+template <int C>
 void smoothBand(const Level& L, Vec& x, const Vec& b, int colour) {
   const std::vector<std::int64_t>& band = L.band[colour];
+  const Stencil<C> stencil(L);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c < r.end(); ++c) {
-      const std::int64_t p = band[c];
-      x[p] = (b[p] + neighbourSum(L, x.data(), p)) / L.diag[p];
-    }
+    for (std::size_t c = r.begin(); c < r.end(); ++c) relax<C>(stencil, L, x.data(), b.data(), band[c]);
   });
 }
 
-// A coarse cell is Fixed if any of its (up to) 2×2×2 children is Fixed, else Free if any is Free: every
-// coarse free region then still reaches a fixed cell, so no coarse problem is singular (McAdams et al.
-// 2010 label coarse cells the same way).
-Level coarsen(const Level& F, const Level& finest, int B) {
-  Level C = makeLevel(((F.n.array() + 1) / 2).matrix(), 2 * F.h);
-  forEachRow(C, [&](int J, int K, std::int64_t row) {
-    for (int I = 0; I < C.n.x(); ++I) {
-      bool anyFixed = false, anyFree = false;
-      for (int k = 2 * K; k < std::min(2 * K + 2, F.n.z()); ++k)
-        for (int j = 2 * J; j < std::min(2 * J + 2, F.n.y()); ++j)
-          for (int i = 2 * I; i < std::min(2 * I + 2, F.n.x()); ++i) {
-            const CellRole r = F.role[F.at(i, j, k)];
-            anyFixed |= r == CellRole::Fixed;
-            anyFree |= r == CellRole::Free;
-          }
-      C.role[row + I] = anyFixed ? CellRole::Fixed : anyFree ? CellRole::Free : CellRole::Excluded;
-    }
-  });
-  computeDiagonal(C, finest, B);
-  computeBand(C);
-  C.x.assign(C.paddedCount(), 0.0);
-  C.b.assign(C.paddedCount(), 0.0);
-  C.r.assign(C.paddedCount(), 0.0);
-  C.restricted.assign(C.paddedCount(), 0.0);
-  return C;
-}
-
-// Cell-centred trilinear weights along one axis: fine cells 2c−1, 2c, 2c+1, 2c+2 take 1/4, 3/4, 3/4, 1/4
-// of coarse cell c.
-constexpr double kWeight[4] = {0.25, 0.75, 0.75, 0.25};
-
-// Calls f(s, a, d, t) for each Free face neighbour t = s + d·e_a of cell s (padded index, ghosts included).
+// Calls f(a, d, t) for each Free face neighbour t = s + d·e_a of cell s (padded index, ghosts included).
 template <class F>
 void forEachFreeNeighbour(const Level& L, std::int64_t s, const F& f) {
   const std::int64_t offset[3] = {1, L.sy, L.sz};
@@ -253,138 +318,264 @@ void forEachFreeNeighbour(const Level& L, std::int64_t s, const F& f) {
     }
 }
 
+// The non-Free cells next to Free ones (where E extrapolates) and their counts of Free neighbours.
+void computeHalo(Level& C) {
+  C.freeNeighbours.assign(C.paddedCount(), 0);
+  for (std::int64_t s = 0; s < C.paddedCount(); ++s) {
+    if (C.isFree(s)) continue;
+    forEachFreeNeighbour(C, s, [&](int, int, std::int64_t) { ++C.freeNeighbours[s]; });
+    if (C.freeNeighbours[s]) C.halo.push_back(s);
+  }
+}
+
+// Cell-centred trilinear weights along one axis: fine cells 2c−1, 2c, 2c+1, 2c+2 take 1/4, 3/4, 3/4, 1/4
+// of coarse cell c.
+constexpr double kWeight[4] = {0.25, 0.75, 0.75, 0.25};
+
+// For each coarse row (ghosts included), the coarse cells whose 4×4×4 window of fine cells meets a fine
+// row's Free span; P_trilinearᵀ r is zero elsewhere (r is zero outside the Free cells).
+void computeRestrictSpans(const Level& F, Level& C) {
+  const int rowsY = C.n.y() + 2;
+  C.restrictSpan.assign(std::size_t(rowsY) * (C.n.z() + 2), Span{});
+  for (int K = -1; K <= C.n.z(); ++K)
+    for (int J = -1; J <= C.n.y(); ++J) {
+      int lo = F.n.x(), hi = 0;
+      for (int k = std::max(0, 2 * K - 1); k <= std::min(F.n.z() - 1, 2 * K + 2); ++k)
+        for (int j = std::max(0, 2 * J - 1); j <= std::min(F.n.y() - 1, 2 * J + 2); ++j) {
+          const Span s = F.rowSpan(j, k);
+          if (s.begin < s.end) lo = std::min(lo, s.begin), hi = std::max(hi, s.end);
+        }
+      // Fine cells 2I−1 .. 2I+2 meet [lo, hi) for I from ⌈(lo − 2) / 2⌉ to ⌊hi / 2⌋.
+      if (lo < hi) C.restrictSpan[(J + 1) + std::int64_t(rowsY) * (K + 1)] = {(lo + 1) / 2 - 1, hi / 2 + 1};
+    }
+}
+
+// A coarse cell is Fixed if any of its (up to) 2×2×2 children is Fixed, else Free if any is Free: every
+// coarse free region then still reaches a fixed cell, so no coarse problem is singular (McAdams et al.
+// 2010 label coarse cells the same way).
+Level coarsen(const Level& F, const Level& finest, int B) {
+  Level C = makeLevel(((F.n.array() + 1) / 2).matrix(), 2 * F.h);
+  tbb::parallel_for(0, C.n.z(), [&](int K) {
+    for (int J = 0; J < C.n.y(); ++J)
+      for (int I = 0; I < C.n.x(); ++I) {
+        bool anyFixed = false, anyFree = false;
+        for (int k = 2 * K; k < std::min(2 * K + 2, F.n.z()); ++k)
+          for (int j = 2 * J; j < std::min(2 * J + 2, F.n.y()); ++j)
+            for (int i = 2 * I; i < std::min(2 * I + 2, F.n.x()); ++i) {
+              const CellRole r = F.role[F.at(i, j, k)];
+              anyFixed |= r == CellRole::Fixed;
+              anyFree |= r == CellRole::Free;
+            }
+        C.role[C.at(I, J, K)] = anyFixed ? CellRole::Fixed : anyFree ? CellRole::Free : CellRole::Excluded;
+      }
+  });
+  computeSpans(C);
+  computeDiagonal(C, finest, B);
+  computeBand(C);
+  computeHalo(C);
+  computeRestrictSpans(F, C);
+  return C;
+}
+
 // Extends the coarse correction to the non-Free cells (ghosts included) by extrapolating from each Free
 // face neighbour t with the factor that puts zero at the Dirichlet position seen from t (1 − coupling:
 // 0 for a Fixed centre, 1 for zero flux), averaged over the neighbours. Trilinear prolongation then
 // gives a fine cell next to a boundary the correction of a linear function vanishing on the boundary,
 // instead of one pulled towards zero at the coarse Fixed cell's centre. This is E in P = P_trilinear E.
-void extendIntoBoundary(Level& C) {
-  tbb::parallel_for(0, C.n.z() + 2, [&](int k) {
-    for (std::int64_t s = k * C.sz; s < (k + 1) * C.sz; ++s) {
-      if (C.isFree(s)) continue;
-      double sum = 0;
-      int count = 0;
-      forEachFreeNeighbour(C, s, [&](int a, int d, std::int64_t t) {
-        sum += C.ghost[6 * t + 2 * a + (d < 0)] * C.x[t];  // t sees s on side −d
-        ++count;
+template <int C>
+void extendIntoBoundary(Level& L) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.halo.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t h = r.begin(); h < r.end(); ++h) {
+      const std::int64_t s = L.halo[h];
+      Sums<C> sum{};
+      forEachFreeNeighbour(L, s, [&](int a, int d, std::int64_t t) {
+        const double factor = L.ghost[6 * t + 2 * a + (d < 0)];  // t sees s on side −d
+        for (int c = 0; c < C; ++c) sum[c] += factor * L.x[C * t + c];
       });
-      C.x[s] = count ? sum / count : 0.0;
+      for (int c = 0; c < C; ++c) L.x[C * s + c] = sum[c] / L.freeNeighbours[s];
+    }
+  });
+}
+
+// Eᵀ of the restriction (the transpose of extendIntoBoundary): coarse b at each Free cell is its own
+// P_trilinearᵀ r / 8 plus what its non-Free neighbours received, by the factor it extrapolated into them
+// with, divided by their count of Free neighbours.
+template <int C>
+void restrictBoundary(Level& Co) {
+  const std::int64_t offset[3] = {1, Co.sy, Co.sz};
+  forEachSpan(Co, [&](int, int, std::int64_t row, Span span) {
+    for (std::int64_t t = row + span.begin; t < row + span.end; ++t) {
+      if (!Co.isFree(t)) continue;
+      Sums<C> sum;
+      for (int f = 0; f < C; ++f) sum[f] = Co.restricted[C * t + f];
+      for (int a = 0; a < 3; ++a)
+        for (int d : {-1, 1}) {
+          const std::int64_t s = t + d * offset[a];
+          if (Co.isFree(s)) continue;
+          for (int f = 0; f < C; ++f)
+            sum[f] += Co.ghost[6 * t + 2 * a + (d > 0)] * Co.restricted[C * s + f] / Co.freeNeighbours[s];
+        }
+      for (int f = 0; f < C; ++f) Co.b[C * t + f] = sum[f];
     }
   });
 }
 
 // coarse b = R r with R = Pᵀ / 8 = Eᵀ P_trilinearᵀ / 8, exactly the transpose of the prolongation, so the
-// V-cycle is symmetric. First P_trilinearᵀ / 8 into C.restricted at every coarse cell (ghosts included): fine cells
-// 2c−1 .. 2c+2 along each axis with weights 1/4, 3/4, 3/4, 1/4, summing to 8 over the 4×4×4 window.
-void restrictResidual(const Level& F, Level& C) {
-  tbb::parallel_for(-1, C.n.z() + 1, [&](int K) {
-    for (int J = -1; J <= C.n.y(); ++J)
-      for (int I = -1; I <= C.n.x(); ++I) {
-        double sum = 0;
-        for (int c = 0; c < 4; ++c) {
-          const int k = 2 * K - 1 + c;
-          if (k < 0 || k >= F.n.z()) continue;
-          for (int bj = 0; bj < 4; ++bj) {
-            const int j = 2 * J - 1 + bj;
-            if (j < 0 || j >= F.n.y()) continue;
-            const double wjk = kWeight[c] * kWeight[bj];
-            const std::int64_t fineRow = F.at(0, j, k);
-            for (int a = 0; a < 4; ++a) {
-              const int i = 2 * I - 1 + a;
-              if (i >= 0 && i < F.n.x()) sum += wjk * kWeight[a] * F.r[fineRow + i];
-            }
-          }
-        }
-        C.restricted[C.at(I, J, K)] = sum / 8;
+// V-cycle is symmetric. First P_trilinearᵀ / 8 into Co.restricted — fine cells 2c−1 .. 2c+2 along each
+// axis with weights 1/4, 3/4, 3/4, 1/4, summing to 8 over the 4×4×4 window, applied one axis at a time
+// (k, then j, then i: 28 multiply-adds per coarse cell instead of 64) and only where fine Free cells
+// are — then Eᵀ (restrictBoundary).
+template <int C>
+void restrictResidual(const Level& F, Level& Co) {
+  const int rowsY = Co.n.y() + 2, nx = F.n.x();
+  tbb::parallel_for(-1, Co.n.z() + 1, [&](int K) {
+    // tk(i, j) = Σ_c w_c r(i, j, 2K − 1 + c), defined on each fine row's span tkSpan[j].
+    std::unique_ptr<double[]> tk(new double[std::size_t(C) * nx * F.n.y()]), tjk(new double[std::size_t(C) * nx]);
+    std::vector<Span> tkSpan(F.n.y(), Span{nx, 0});
+    for (int j = 0; j < F.n.y(); ++j) {
+      Span& u = tkSpan[j];
+      for (int k = std::max(0, 2 * K - 1); k <= std::min(F.n.z() - 1, 2 * K + 2); ++k) {
+        const Span s = F.rowSpan(j, k);
+        if (s.begin < s.end) u.begin = std::min(u.begin, s.begin), u.end = std::max(u.end, s.end);
       }
-  });
-  // Then Eᵀ: each Free cell gathers what its non-Free neighbours received, by the factor it extrapolated
-  // into them with, divided by their count of Free neighbours.
-  const std::int64_t offset[3] = {1, C.sy, C.sz};
-  forEachRow(C, [&](int, int, std::int64_t row) {
-    for (int I = 0; I < C.n.x(); ++I) {
-      const std::int64_t t = row + I;
-      if (!C.isFree(t)) continue;
-      double sum = C.restricted[t];
-      for (int a = 0; a < 3; ++a)
-        for (int d : {-1, 1}) {
-          const std::int64_t s = t + d * offset[a];
-          if (C.isFree(s)) continue;
-          int count = 0;
-          forEachFreeNeighbour(C, s, [&](int, int, std::int64_t) { ++count; });
-          sum += C.ghost[6 * t + 2 * a + (d > 0)] * C.restricted[s] / count;
+      if (u.begin >= u.end) continue;
+      double* t = &tk[std::size_t(C) * nx * j];
+      std::fill(t + C * u.begin, t + C * u.end, 0.0);
+      for (int c = 0; c < 4; ++c) {
+        const int k = 2 * K - 1 + c;
+        if (k < 0 || k >= F.n.z()) continue;
+        const double* r = &F.r[C * F.at(0, j, k)];
+        for (int q = C * u.begin; q < C * u.end; ++q) t[q] += kWeight[c] * r[q];
+      }
+    }
+    for (int J = -1; J <= Co.n.y(); ++J) {
+      const Span span = Co.restrictSpan[(J + 1) + std::int64_t(rowsY) * (K + 1)];
+      if (span.begin >= span.end) continue;
+      // tjk(i) = Σ_b w_b tk(i, 2J − 1 + b) over the fine cells the span's windows cover.
+      const int i0 = std::max(0, 2 * span.begin - 1), i1 = std::min(nx, 2 * span.end + 1);
+      std::fill(&tjk[C * i0], &tjk[C * i1], 0.0);
+      for (int b = 0; b < 4; ++b) {
+        const int j = 2 * J - 1 + b;
+        if (j < 0 || j >= F.n.y()) continue;
+        const double* t = &tk[std::size_t(C) * nx * j];
+        for (int q = C * std::max(i0, tkSpan[j].begin); q < C * std::min(i1, tkSpan[j].end); ++q)
+          tjk[q] += kWeight[b] * t[q];
+      }
+      for (int I = span.begin; I < span.end; ++I) {
+        Sums<C> sum{};
+        for (int a = 0; a < 4; ++a) {
+          const int i = 2 * I - 1 + a;
+          if (i >= 0 && i < nx)
+            for (int f = 0; f < C; ++f) sum[f] += kWeight[a] * tjk[C * i + f];
         }
-      C.b[t] = sum;
+        for (int f = 0; f < C; ++f) Co.restricted[C * Co.at(I, J, K) + f] = sum[f] / 8;
+      }
     }
   });
+  restrictBoundary<C>(Co);
 }
 
 // x += P xc at fine Free cells: each fine cell interpolates its parent (weight 3/4 per axis) and the
 // parent's neighbour on its side (1/4). Coarse cells that are not Free hold 0 (Dirichlet for the error).
-void addProlongation(const Level& C, const Level& F, Vec& x) {
-  forEachRow(F, [&](int j, int k, std::int64_t row) {
+template <int C>
+void addProlongation(const Level& Co, const Level& F, Vec& x) {
+  forEachSpan(F, [&](int j, int k, std::int64_t row, Span span) {
     const int J[2] = {j / 2, (j & 1) ? j / 2 + 1 : j / 2 - 1};
     const int K[2] = {k / 2, (k & 1) ? k / 2 + 1 : k / 2 - 1};
-    for (int i = 0; i < F.n.x(); ++i) {
+    for (int i = span.begin; i < span.end; ++i) {
       if (!F.isFree(row + i)) continue;
       const int I[2] = {i / 2, (i & 1) ? i / 2 + 1 : i / 2 - 1};
-      double sum = 0;
+      Sums<C> sum{};
       for (int c = 0; c < 2; ++c)
         for (int bj = 0; bj < 2; ++bj)
-          for (int a = 0; a < 2; ++a)
-            sum += kWeight[1 + c * 2] * kWeight[1 + bj * 2] * kWeight[1 + a * 2] * C.x[C.at(I[a], J[bj], K[c])];
-      x[row + i] += sum;
+          for (int a = 0; a < 2; ++a) {
+            const double weight = kWeight[1 + c * 2] * kWeight[1 + bj * 2] * kWeight[1 + a * 2];
+            const double* xc = &Co.x[C * Co.at(I[a], J[bj], K[c])];
+            for (int f = 0; f < C; ++f) sum[f] += weight * xc[f];
+          }
+      for (int f = 0; f < C; ++f) x[C * (row + i) + f] += sum[f];
     }
   });
 }
 
-void axpy(double alpha, const Vec& x, Vec& y) {
-  forEachChunk(std::int64_t(y.size()), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t p = begin; p < end; ++p) y[p] += alpha * x[p];
+// v = 0 at the Free cells (the rest is zero already).
+template <int C>
+void zeroFree(const Level& L, Vec& v) {
+  forEachSpan(L, [&](int, int, std::int64_t row, Span s) {
+    std::fill(v.begin() + C * (row + s.begin), v.begin() + C * (row + s.end), 0.0);
   });
 }
 
+template <int C>
+bool all(const Flags<C>& flags) {
+  return std::all_of(flags.begin(), flags.end(), [](bool f) { return f; });
+}
+
+template <int C>
 struct CgResult {
-  int iterations = 0;
-  std::vector<double> history;  // relative residual of CG's recurrence
+  std::array<int, C> iterations{};
+  std::array<std::vector<double>, C> history;  // relative residual of CG's recurrence
 };
 
-// Preconditioned CG on A x = rhs over L's Free cells, x in/out; precondition(r, z) sets z = M⁻¹ r.
-template <class Precondition>
-CgResult conjugateGradient(const Level& L, Vec& x, const Vec& rhs, double tolerance, int maxIterations,
-                           const Precondition& precondition) {
-  const std::int64_t N = L.paddedCount();
-  Vec r(N, 0.0), z(N, 0.0), q(N, 0.0);
-  computeResidual(L, x, rhs, r);
-  const double rhsNorm = norm(rhs);
-  CgResult result;
-  result.history.push_back(norm(r) / rhsNorm);
-  if (result.history.back() <= tolerance) return result;
+// Preconditioned CG on A x = rhs over L's Free cells for each field c not yet `done`, x in/out;
+// precondition(r, z) sets z = M⁻¹ r. Each field stops at its own tolerance (its α and β are its own),
+// so its iterates are those of a solve on its own.
+template <int C, class Precondition>
+CgResult<C> conjugateGradient(const Level& L, Vec& x, const Vec& rhs, double tolerance, int maxIterations,
+                              Flags<C> done, const Precondition& precondition) {
+  const std::int64_t N = C * L.paddedCount();
+  Vec r(N, 0.0), z(N, 0.0), p(N, 0.0);  // z also holds A p, which is used up before z is needed
+  const Sums<C> bb = dot<C>(L, rhs, rhs), rr = computeResidual<C>(L, x, rhs, r);
+  CgResult<C> result;
+  auto record = [&](const Sums<C>& squares) {
+    for (int c = 0; c < C; ++c)
+      if (!done[c]) {
+        result.history[c].push_back(std::sqrt(squares[c]) / std::sqrt(bb[c]));
+        done[c] = result.history[c].back() <= tolerance;
+      }
+  };
+  record(rr);
+  if (all<C>(done)) return result;
   precondition(r, z);
-  Vec p = z;
-  double rz = dot(r, z);
+  p = z;
+  Sums<C> rz = dot<C>(L, r, z);
   for (int it = 1; it <= maxIterations; ++it) {
-    applyOperator(L, p, q);
-    const double alpha = rz / dot(p, q);
-    axpy(alpha, p, x);
-    axpy(-alpha, q, r);
-    result.iterations = it;
-    result.history.push_back(norm(r) / rhsNorm);
-    if (result.history.back() <= tolerance) break;
+    const Sums<C> pq = applyOperator<C>(L, p, z);
+    Flags<C> active;
+    Sums<C> alpha{};
+    for (int c = 0; c < C; ++c)
+      if ((active[c] = !done[c])) result.iterations[c] = it, alpha[c] = rz[c] / pq[c];
+    record(sumOverSpans<C>(L, [&](std::int64_t row, Span s, Sums<C>& sum) {
+      for (std::int64_t q = C * (row + s.begin); q < C * (row + s.end); q += C)
+        for (int c = 0; c < C; ++c)
+          if (active[c]) {
+            x[q + c] += alpha[c] * p[q + c];
+            r[q + c] -= alpha[c] * z[q + c];
+            sum[c] += r[q + c] * r[q + c];
+          }
+    }));
+    if (all<C>(done)) break;
     precondition(r, z);
-    const double rzNext = dot(r, z);
-    const double beta = rzNext / rz;
+    const Sums<C> rzNext = dot<C>(L, r, z);
+    Sums<C> beta{};
+    for (int c = 0; c < C; ++c) beta[c] = rzNext[c] / rz[c];
     rz = rzNext;
-    forEachChunk(N, [&](std::int64_t begin, std::int64_t end) {
-      for (std::int64_t k = begin; k < end; ++k) p[k] = z[k] + beta * p[k];
+    forEachSpan(L, [&](int, int, std::int64_t row, Span s) {
+      for (std::int64_t q = C * (row + s.begin); q < C * (row + s.end); q += C)
+        for (int c = 0; c < C; ++c)
+          if (!done[c]) p[q + c] = z[q + c] + beta[c] * p[q + c];
     });
   }
   return result;
 }
 
+// z = r / diag at Free cells (the rest of z is zero already).
+template <int C>
 void jacobi(const Level& L, const Vec& r, Vec& z) {
-  forEachChunk(std::int64_t(r.size()), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t p = begin; p < end; ++p) z[p] = L.isFree(p) ? r[p] / L.diag[p] : 0.0;
+  forEachSpan(L, [&](int, int, std::int64_t row, Span s) {
+    for (std::int64_t p = row + s.begin; p < row + s.end; ++p)
+      if (L.isFree(p))
+        for (int c = 0; c < C; ++c) z[C * p + c] = r[C * p + c] / L.diag[p];
   });
 }
 
@@ -438,78 +629,160 @@ struct LaplaceInterpolator::Impl {
   std::vector<Level> levels;  // levels[0] is the grid itself
   std::int64_t freeCount = 0;
 
+  template <int C>
   void vCycle(std::size_t l, Vec& x, const Vec& b);
+  template <int C>
   void coarseSolve(const Level& L, Vec& x, const Vec& b) const;
-  void load(const Grid<double>& field, Vec& x, Vec& b) const;
-  CgResult multigrid(Vec& x, const Vec& b);
+  template <int C>
+  void load(const std::array<Grid<double>*, C>& fields, Vec& x, Vec& b) const;
+  template <int C>
+  CgResult<C> multigrid(Vec& x, const Vec& b, Flags<C> done);
+  template <int C>
+  std::array<LaplaceSolveInfo, C> solve(const std::array<Grid<double>*, C>& fields);
 };
 
+template <int C>
 void LaplaceInterpolator::Impl::coarseSolve(const Level& L, Vec& x, const Vec& b) const {
-  if (norm(b) == 0) {
-    std::fill(x.begin(), x.end(), 0.0);
-    return;
-  }
-  conjugateGradient(L, x, b, 1e-12, 10000, [&](const Vec& r, Vec& z) { jacobi(L, r, z); });
+  const Sums<C> bb = dot<C>(L, b, b);
+  Flags<C> done;
+  for (int c = 0; c < C; ++c) done[c] = bb[c] == 0;  // x is 0 already
+  conjugateGradient<C>(L, x, b, 1e-12, 10000, done, [&](const Vec& r, Vec& z) { jacobi<C>(L, r, z); });
 }
 
+template <int C>
 void LaplaceInterpolator::Impl::vCycle(std::size_t l, Vec& x, const Vec& b) {
   Level& L = levels[l];
-  if (l + 1 == levels.size()) return coarseSolve(L, x, b);
-  for (int s = 0; s < options.boundarySweeps; ++s) smoothBand(L, x, b, 0), smoothBand(L, x, b, 1);
-  for (int s = 0; s < options.smoothingSweeps; ++s) smoothColour(L, x, b, 0), smoothColour(L, x, b, 1);
-  computeResidual(L, x, b, L.r);
-  Level& C = levels[l + 1];
-  restrictResidual(L, C);
-  std::fill(C.x.begin(), C.x.end(), 0.0);
-  vCycle(l + 1, C.x, C.b);
-  extendIntoBoundary(C);
-  addProlongation(C, L, x);
+  if (l + 1 == levels.size()) return coarseSolve<C>(L, x, b);
+  for (int s = 0; s < options.boundarySweeps; ++s) smoothBand<C>(L, x, b, 0), smoothBand<C>(L, x, b, 1);
+  for (int s = 0; s < options.smoothingSweeps; ++s) smoothSweep<C>(L, x, b, 0);
+  computeResidual<C>(L, x, b, L.r);
+  Level& Co = levels[l + 1];
+  restrictResidual<C>(L, Co);
+  std::fill(Co.x.begin(), Co.x.end(), 0.0);
+  vCycle<C>(l + 1, Co.x, Co.b);
+  extendIntoBoundary<C>(Co);
+  addProlongation<C>(Co, L, x);
   // The reverse colour order makes the post-smoother the adjoint of the pre-smoother.
-  for (int s = 0; s < options.smoothingSweeps; ++s) smoothColour(L, x, b, 1), smoothColour(L, x, b, 0);
-  for (int s = 0; s < options.boundarySweeps; ++s) smoothBand(L, x, b, 1), smoothBand(L, x, b, 0);
+  for (int s = 0; s < options.smoothingSweeps; ++s) smoothSweep<C>(L, x, b, 1);
+  for (int s = 0; s < options.boundarySweeps; ++s) smoothBand<C>(L, x, b, 1), smoothBand<C>(L, x, b, 0);
 }
 
-CgResult LaplaceInterpolator::Impl::multigrid(Vec& x, const Vec& b) {
-  Level& L = levels[0];
-  const double rhsNorm = norm(b);
-  CgResult result;
-  computeResidual(L, x, b, L.r);
-  result.history.push_back(norm(L.r) / rhsNorm);
-  while (result.history.back() > options.tolerance && result.iterations < options.maxCycles) {
-    vCycle(0, x, b);
-    computeResidual(L, x, b, L.r);
-    result.history.push_back(norm(L.r) / rhsNorm);
-    ++result.iterations;
-  }
-  return result;
-}
-
-// x: the field's Free values (the initial guess); b: the Fixed neighbours' values times their weights.
-void LaplaceInterpolator::Impl::load(const Grid<double>& field, Vec& x, Vec& b) const {
+// V-cycles as a stationary iteration, written as defect correction (x += V-cycle on the residual, from
+// zero) so that a field that has converged can stop while the others go on.
+template <int C>
+CgResult<C> LaplaceInterpolator::Impl::multigrid(Vec& x, const Vec& b, Flags<C> done) {
   const Level& L = levels[0];
-  if (field.geometry.size != geometry.size || std::int64_t(field.values.size()) != geometry.voxelCount())
-    throw BadInput("", "Laplace interpolation: the field's grid size differs from the interpolator's");
-  for (int k = 0; k < L.n.z(); ++k)
-    for (int j = 0; j < L.n.y(); ++j)
-      for (int i = 0; i < L.n.x(); ++i)
-        if (L.role[L.at(i, j, k)] != CellRole::Excluded && !std::isfinite(field.at(i, j, k)))
-          throw BadInput("", "Laplace interpolation: non-finite value at voxel (" + std::to_string(i) + ", " +
-                                 std::to_string(j) + ", " + std::to_string(k) + ")");
+  const Sums<C> bb = dot<C>(L, b, b);
+  Vec r(x.size(), 0.0), e(x.size(), 0.0);
+  CgResult<C> result;
+  for (int cycle = 0;; ++cycle) {
+    const Sums<C> rr = computeResidual<C>(L, x, b, r);
+    for (int c = 0; c < C; ++c)
+      if (!done[c]) {
+        result.history[c].push_back(std::sqrt(rr[c]) / std::sqrt(bb[c]));
+        result.iterations[c] = cycle;
+        done[c] = result.history[c].back() <= options.tolerance;
+      }
+    if (all<C>(done) || cycle == options.maxCycles) return result;
+    zeroFree<C>(L, e);
+    vCycle<C>(0, e, r);
+    forEachSpan(L, [&](int, int, std::int64_t row, Span s) {
+      for (std::int64_t q = C * (row + s.begin); q < C * (row + s.end); q += C)
+        for (int c = 0; c < C; ++c)
+          if (!done[c]) x[q + c] += e[q + c];
+    });
+  }
+}
+
+// x: the fields' Free values (the initial guess); b: the Fixed neighbours' values times their weights.
+template <int C>
+void LaplaceInterpolator::Impl::load(const std::array<Grid<double>*, C>& fields, Vec& x, Vec& b) const {
+  const Level& L = levels[0];
+  for (const Grid<double>* field : fields) {
+    if (field->geometry.size != geometry.size || std::int64_t(field->values.size()) != geometry.voxelCount())
+      throw BadInput("", "Laplace interpolation: the field's grid size differs from the interpolator's");
+    for (int k = 0; k < L.n.z(); ++k)
+      for (int j = 0; j < L.n.y(); ++j)
+        for (int i = 0; i < L.n.x(); ++i)
+          if (L.role[L.at(i, j, k)] != CellRole::Excluded && !std::isfinite(field->at(i, j, k)))
+            throw BadInput("", "Laplace interpolation: non-finite value at voxel (" + std::to_string(i) + ", " +
+                                   std::to_string(j) + ", " + std::to_string(k) + ")");
+  }
   const std::int64_t offset[3] = {1, L.sy, L.sz};
-  forEachRow(L, [&](int j, int k, std::int64_t row) {
+  forEachSpan(L, [&](int j, int k, std::int64_t row, Span span) {
     const std::int64_t fieldRow = geometry.linearIndex(0, j, k);
-    for (int i = 0; i < L.n.x(); ++i) {
+    for (int i = span.begin; i < span.end; ++i) {
       const std::int64_t p = row + i;
       if (!L.isFree(p)) continue;
-      x[p] = field.values[fieldRow + i];
+      for (int c = 0; c < C; ++c) x[C * p + c] = fields[c]->values[fieldRow + i];
       for (int a = 0; a < 3; ++a)
         for (int s : {-1, 1})
           if (L.role[p + s * offset[a]] == CellRole::Fixed) {
             const Eigen::Vector3i q = L.indexOf(p + s * offset[a]);
-            b[p] += L.w[a] * field.at(q.x(), q.y(), q.z());
+            for (int c = 0; c < C; ++c) b[C * p + c] += L.w[a] * fields[c]->at(q.x(), q.y(), q.z());
           }
     }
   });
+}
+
+template <int C>
+std::array<LaplaceSolveInfo, C> LaplaceInterpolator::Impl::solve(const std::array<Grid<double>*, C>& fields) {
+  Level& L = levels[0];
+  Vec x(C * L.paddedCount(), 0.0), b(C * L.paddedCount(), 0.0);
+  load<C>(fields, x, b);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Level& level = levels[l];
+    level.r.assign(C * level.paddedCount(), 0.0);
+    if (l == 0) continue;
+    for (Vec* v : {&level.x, &level.b, &level.restricted}) v->assign(C * level.paddedCount(), 0.0);
+  }
+  const Sums<C> bb = dot<C>(L, b, b);
+  Flags<C> zero;
+  std::array<LaplaceSolveInfo, C> info;
+  for (int c = 0; c < C; ++c) {
+    // Every fixed value next to the free cells is zero: the harmonic extension is zero.
+    zero[c] = bb[c] == 0;
+    if (zero[c]) info[c].residualHistory = {0.0};
+  }
+  for (int c = 0; c < C; ++c)
+    if (zero[c])
+      forEachSpan(L, [&](int, int, std::int64_t row, Span s) {
+        for (std::int64_t p = row + s.begin; p < row + s.end; ++p) x[C * p + c] = 0;
+      });
+  if (!all<C>(zero)) {
+    CgResult<C> r;
+    if (options.solver == LaplaceSolver::ConjugateGradient)
+      r = conjugateGradient<C>(L, x, b, options.tolerance, options.maxCgIterations, zero,
+                               [&](const Vec& v, Vec& z) { jacobi<C>(L, v, z); });
+    else if (options.solver == LaplaceSolver::MultigridCG)
+      r = conjugateGradient<C>(L, x, b, options.tolerance, options.maxCycles, zero, [&](const Vec& v, Vec& z) {
+        zeroFree<C>(L, z);
+        vCycle<C>(0, z, v);
+      });
+    else
+      r = multigrid<C>(x, b, zero);
+    // CG's recurrence drifts from the true residual; report (and judge) the true one.
+    const Sums<C> rr = computeResidual<C>(L, x, b, L.r);
+    for (int c = 0; c < C; ++c)
+      if (!zero[c]) {
+        info[c].iterations = r.iterations[c];
+        info[c].residualHistory = std::move(r.history[c]);
+        info[c].relativeResidual = std::sqrt(rr[c]) / std::sqrt(bb[c]);
+      }
+  }
+  for (int c = 0; c < C; ++c)
+    // CG's recurrence may stop at the tolerance while the true residual sits slightly above it.
+    if (info[c].relativeResidual > 2 * options.tolerance)
+      throw NumericalFailure("Laplace interpolation: relative residual " + std::to_string(info[c].relativeResidual) +
+                             " after " + std::to_string(info[c].iterations) + " iterations, above the tolerance " +
+                             std::to_string(options.tolerance));
+  forEachSpan(L, [&](int j, int k, std::int64_t row, Span s) {
+    const std::int64_t fieldRow = geometry.linearIndex(0, j, k);
+    for (int i = s.begin; i < s.end; ++i)
+      if (L.isFree(row + i))
+        for (int c = 0; c < C; ++c) fields[c]->values[fieldRow + i] = x[C * (row + i) + c];
+  });
+  return info;
 }
 
 LaplaceInterpolator::LaplaceInterpolator(const GridGeometry& geometry, const std::vector<CellRole>& roles,
@@ -523,17 +796,15 @@ LaplaceInterpolator::LaplaceInterpolator(const GridGeometry& geometry, const std
   impl_->options = options;
   impl_->geometry = geometry;
   Level L = makeLevel(geometry.size, geometry.spacing);
-  for (int k = 0; k < L.n.z(); ++k)
+  tbb::parallel_for(0, L.n.z(), [&](int k) {
     for (int j = 0; j < L.n.y(); ++j)
-      for (int i = 0; i < L.n.x(); ++i) {
-        const CellRole r = roles[geometry.linearIndex(i, j, k)];
-        L.role[L.at(i, j, k)] = r;
-        impl_->freeCount += r == CellRole::Free;
-      }
+      std::copy_n(roles.begin() + geometry.linearIndex(0, j, k), L.n.x(), L.role.begin() + L.at(0, j, k));
+  });
+  impl_->freeCount = std::count(roles.begin(), roles.end(), CellRole::Free);
   checkEveryFreeRegionIsAnchored(L);
+  computeSpans(L);
   computeDiagonal(L, L, 1);
   computeBand(L);
-  L.r.assign(L.paddedCount(), 0.0);
   impl_->levels.push_back(std::move(L));
   if (options.solver == LaplaceSolver::ConjugateGradient) return;
   for (;;) {
@@ -547,46 +818,10 @@ LaplaceInterpolator::~LaplaceInterpolator() = default;
 LaplaceInterpolator::LaplaceInterpolator(LaplaceInterpolator&&) noexcept = default;
 LaplaceInterpolator& LaplaceInterpolator::operator=(LaplaceInterpolator&&) noexcept = default;
 
-LaplaceSolveInfo LaplaceInterpolator::solve(Grid<double>& field) {
-  Impl& m = *impl_;
-  const Level& L = m.levels[0];
-  Vec x(L.paddedCount(), 0.0), b(L.paddedCount(), 0.0);
-  m.load(field, x, b);
-  LaplaceSolveInfo info;
-  if (norm(b) == 0) {
-    // Every fixed value adjacent to the free cells is zero: the harmonic extension is zero.
-    std::fill(x.begin(), x.end(), 0.0);
-    info.residualHistory = {0.0};
-  } else {
-    const LaplaceOptions& o = m.options;
-    CgResult r;
-    if (o.solver == LaplaceSolver::ConjugateGradient)
-      r = conjugateGradient(L, x, b, o.tolerance, o.maxCgIterations, [&](const Vec& v, Vec& z) { jacobi(L, v, z); });
-    else if (o.solver == LaplaceSolver::MultigridCG)
-      r = conjugateGradient(L, x, b, o.tolerance, o.maxCycles, [&](const Vec& v, Vec& z) {
-        std::fill(z.begin(), z.end(), 0.0);
-        m.vCycle(0, z, v);
-      });
-    else
-      r = m.multigrid(x, b);
-    info.iterations = r.iterations;
-    info.residualHistory = std::move(r.history);
-    // CG's recurrence drifts from the true residual; report (and judge) the true one.
-    Vec res(L.paddedCount(), 0.0);
-    computeResidual(L, x, b, res);
-    info.relativeResidual = norm(res) / norm(b);
-  }
-  // CG's recurrence may stop at the tolerance while the true residual sits slightly above it.
-  if (info.relativeResidual > 2 * m.options.tolerance)
-    throw NumericalFailure("Laplace interpolation: relative residual " + std::to_string(info.relativeResidual) +
-                           " after " + std::to_string(info.iterations) + " iterations, above the tolerance " +
-                           std::to_string(m.options.tolerance));
-  forEachRow(L, [&](int j, int k, std::int64_t row) {
-    const std::int64_t fieldRow = m.geometry.linearIndex(0, j, k);
-    for (int i = 0; i < L.n.x(); ++i)
-      if (L.isFree(row + i)) field.values[fieldRow + i] = x[row + i];
-  });
-  return info;
+LaplaceSolveInfo LaplaceInterpolator::solve(Grid<double>& field) { return impl_->solve<1>({&field})[0]; }
+
+std::array<LaplaceSolveInfo, 3> LaplaceInterpolator::solve(std::array<Grid<double>, 3>& fields) {
+  return impl_->solve<3>({&fields[0], &fields[1], &fields[2]});
 }
 
 std::int64_t LaplaceInterpolator::freeCount() const { return impl_->freeCount; }

@@ -1,7 +1,7 @@
 // The volumetric displacement field of anatomy transfer (seed 000 §7): displacements given at scattered
 // points (skin vertices, bone vertices) become the fixed cells of a grid over the reference body, and the
-// Laplace interpolation (laplace_interpolation.h) fills the body's other cells, one solve per component
-// with the one factorization. Any reference point then moves by trilinear sampling of the field.
+// Laplace interpolation (laplace_interpolation.h) fills the body's other cells, the three components in
+// one 3-wide solve with the one set-up. Any reference point then moves by trilinear sampling of the field.
 //
 // Where the seed is silent:
 //  - Domain: the cells inside the reference skin (a mask the caller computes, e.g. meshing's
