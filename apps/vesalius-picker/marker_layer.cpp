@@ -95,17 +95,22 @@ MarkerLayer::MarkerLayer(vtkRenderer* renderer, GlyphShape shape) : shape_(shape
     }
     renderer->AddActor(actorsPerGroup_[group]);
   }
-  labelAnchors_ = emptyPoints();
-  auto labelMapper = vtkSmartPointer<vtkLabeledDataMapper>::New();
-  labelMapper->SetInputData(labelAnchors_);
-  labelMapper->SetLabelModeToLabelFieldData();
-  labelMapper->SetFieldDataName("label");
-  vtkTextProperty* text = labelMapper->GetLabelTextProperty();
+  auto text = vtkSmartPointer<vtkTextProperty>::New();
   text->SetFontSize(12);
   text->SetColor(1, 1, 1);
   text->SetJustificationToLeft();
   text->SetVerticalJustificationToCentered();
   text->ShadowOn();
+  if (shape == GlyphShape::Disc) {
+    sliceLabels_ = std::make_unique<SliceLabels>(renderer, text);
+    return;
+  }
+  labelAnchors_ = emptyPoints();
+  auto labelMapper = vtkSmartPointer<vtkLabeledDataMapper>::New();
+  labelMapper->SetInputData(labelAnchors_);
+  labelMapper->SetLabelModeToLabelFieldData();
+  labelMapper->SetFieldDataName("label");
+  labelMapper->SetLabelTextProperty(text);
   labelActor_ = vtkSmartPointer<vtkActor2D>::New();
   labelActor_->SetMapper(labelMapper);
   renderer->AddActor2D(labelActor_);
@@ -113,18 +118,14 @@ MarkerLayer::MarkerLayer(vtkRenderer* renderer, GlyphShape shape) : shape_(shape
 
 MarkerLayer::~MarkerLayer() = default;
 
-void MarkerLayer::show(const std::vector<MarkerGlyph>& glyphs, double radius) {
+void MarkerLayer::show(const std::vector<MarkerGlyph>& glyphs, double radius, double millimetresPerPixel) {
   std::array<vtkSmartPointer<vtkPoints>, 6> points;
   for (auto& p : points) p = vtkSmartPointer<vtkPoints>::New();
-  auto anchors = vtkSmartPointer<vtkPoints>::New();
-  auto labels = vtkSmartPointer<vtkStringArray>::New();
-  labels->SetName("label");
+  std::vector<SliceLabel> labels;
   for (const MarkerGlyph& glyph : glyphs) {
     points[int(glyph.kind) + 3 * glyph.preview]->InsertNextPoint(glyph.position.data());
-    if (glyph.label.empty()) continue;
-    const Eigen::Vector3d anchor = glyph.position + Eigen::Vector3d(1.5 * radius, 0, 0);
-    anchors->InsertNextPoint(anchor.data());
-    labels->InsertNextValue(glyph.label);
+    if (!glyph.label.empty())
+      labels.push_back({glyph.position + Eigen::Vector3d(1.5 * radius, 0, 0), glyph.label});
   }
   for (int group = 0; group < 6; ++group) {
     pointsPerGroup_[group]->SetPoints(points[group]);
@@ -134,9 +135,20 @@ void MarkerLayer::show(const std::vector<MarkerGlyph>& glyphs, double radius) {
       pointsPerGroup_[group]->SetVerts(vertexPerPoint(points[group]->GetNumberOfPoints()));
     pointsPerGroup_[group]->Modified();
   }
+  if (sliceLabels_) {
+    sliceLabels_->show(labels, millimetresPerPixel);
+    return;
+  }
+  auto anchors = vtkSmartPointer<vtkPoints>::New();
+  auto texts = vtkSmartPointer<vtkStringArray>::New();
+  texts->SetName("label");
+  for (const SliceLabel& label : labels) {
+    anchors->InsertNextPoint(label.anchor.data());
+    texts->InsertNextValue(label.text);
+  }
   labelAnchors_->SetPoints(anchors);
   labelAnchors_->GetPointData()->Initialize();
-  labelAnchors_->GetPointData()->AddArray(labels);
+  labelAnchors_->GetPointData()->AddArray(texts);
   labelAnchors_->Modified();
 }
 

@@ -1,10 +1,14 @@
 // Markers drawn in one renderer: one actor per marker kind and status (placed or preview), so 5,000
-// markers cost six actors, not 5,000, plus one label mapper. Slice views draw discs with a glyph
-// mapper; the 3D view draws each marker as one point rendered as a sphere by the GPU, which keeps
-// thousands of them cheap. Previews (suggestions to accept or reject) are rings of their kind's colour
-// in the slices and dimmer spheres in 3D. The caller decides which markers to show and where (a slice
+// markers cost six actors, not 5,000, plus one for the labels. Slice views draw discs with a glyph
+// mapper and labels from cached bitmaps (slice_labels.h); the 3D view draws each marker as one point
+// rendered as a sphere by the GPU, which keeps thousands of them cheap, and labels with
+// vtkLabeledDataMapper (which rasterises them at every render; the 3D view is not rendered per slice
+// step). Previews (suggestions to accept or reject) are rings of their kind's colour in the slices and
+// dimmer spheres in 3D. The caller decides which markers to show and where (a slice
 // view passes the ones on its slice in plane coordinates; the 3D view passes all of them in world space).
 #pragma once
+
+#include "slice_labels.h"
 
 #include "vesalius/core/markers.h"
 
@@ -13,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,15 +47,16 @@ class MarkerLayer {
   ~MarkerLayer();
 
   // Replaces what is drawn. `radius`: the disc radius in the renderer's units (mm); labels sit that far
-  // and a half to the right of their marker.
-  void show(const std::vector<MarkerGlyph>& glyphs, double radius);
+  // and a half to the right of their marker. `millimetresPerPixel`: the scale of a slice view (discs).
+  void show(const std::vector<MarkerGlyph>& glyphs, double radius, double millimetresPerPixel = 1);
 
  private:
   // Indexed by kind + 3 * preview.
   std::array<vtkSmartPointer<vtkPolyData>, 6> pointsPerGroup_;
   std::array<vtkSmartPointer<vtkActor>, 6> actorsPerGroup_;
   GlyphShape shape_;
-  vtkSmartPointer<vtkPolyData> labelAnchors_;
+  std::unique_ptr<SliceLabels> sliceLabels_;  // discs
+  vtkSmartPointer<vtkPolyData> labelAnchors_;  // screen spheres
   vtkSmartPointer<vtkActor2D> labelActor_;
 };
 

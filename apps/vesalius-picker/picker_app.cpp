@@ -29,6 +29,10 @@ namespace {
 
 const Eigen::Vector3d kOverlayColour(1.0, 0.45, 0.1);
 constexpr double kLabelOpacity = 0.35;
+// The 3D view follows scrolled slices once they rest this long: scrolling then renders one slice view
+// per step. A played session (the GUI tests) renders at every step instead, since timers do not fire
+// while events are played and its screenshot must show the 3D view up to date.
+constexpr int kView3dDelayMs = 150;
 
 void checkOutputPath(const PickerOptions& options, const std::string& outputPath) {
   namespace fs = std::filesystem;
@@ -106,6 +110,7 @@ int runPicker(const PickerOptions& options) {
   const gui::DisplayConnection connection("vesalius-picker");  // outlives the window, which does not close it
   PickerWindow window(scan, options.windowWidth, options.windowHeight);
   window.renderWindow()->SetDisplayId(connection.display);
+  if (options.playEventsPath.empty()) window.deferView3d(kView3dDelayMs);
   if (!options.labelsPath.empty()) addLabelLayers(window, options.labelsPath);
   addOverlays(window, options.overlayPaths);
   PickerController controller(document, window, scan, outputPath, options.force, options.acceptConfidence);

@@ -85,8 +85,8 @@ SliceView::SliceView(SliceAxis axis, const ScanVolume& scan, vtkRenderWindow* wi
   crosshairMapper->SetInputData(crosshair_);
   auto crosshairActor = vtkSmartPointer<vtkActor>::New();
   crosshairActor->SetMapper(crosshairMapper);
+  // Opaque: one translucent actor makes VTK run its order-independent translucency pass at every render.
   crosshairActor->GetProperty()->SetColor(0.2, 0.9, 0.3);
-  crosshairActor->GetProperty()->SetOpacity(0.6);
   crosshairActor->GetProperty()->SetAmbient(1.0);
   crosshairActor->GetProperty()->SetDiffuse(0.0);
   renderer_->AddActor(crosshairActor);
@@ -181,13 +181,34 @@ void SliceView::showMarkers(const MarkerSet& markers, std::uint64_t revision) {
   drawnMarkers_ = now;
   changed_ = true;
   std::vector<MarkerGlyph> glyphs;
-  for (const Marker& m : markers.markers) {
-    if (m.status == MarkerStatus::Undefined || !m.visible || !isOnSlice(m.position)) continue;
+  for (const std::size_t i : markersOnSlice(markers, revision)) {
+    const Marker& m = markers.markers[i];
+    if (m.status == MarkerStatus::Undefined || !m.visible) continue;
     Eigen::Vector3d plane = frame_.toPlane(m.position);
     plane.z() = kMarkerHeight;
     glyphs.push_back({plane, m.kind, m.status == MarkerStatus::Preview, m.label});
   }
-  markers_->show(glyphs, kMarkerRadiusPixels * millimetresPerPixel());
+  markers_->show(glyphs, kMarkerRadiusPixels * millimetresPerPixel(), millimetresPerPixel());
+}
+
+std::vector<std::size_t> SliceView::markersOnSlice(const MarkerSet& markers, std::uint64_t revision) {
+  if (indexedRevision_ != revision) {
+    markersByDepth_.clear();
+    for (std::size_t i = 0; i < markers.markers.size(); ++i)
+      if (markers.markers[i].status != MarkerStatus::Undefined)
+        markersByDepth_.emplace_back(frame_.toPlane(markers.markers[i].position).z(), i);
+    std::sort(markersByDepth_.begin(), markersByDepth_.end());
+    indexedRevision_ = revision;
+  }
+  // A little wider than half a step, then isOnSlice's own test, so that round-off decides as it does.
+  const double reach = extent_.depthStep / 2 * (1 + 1e-9) + 1e-9 * std::abs(depth_);
+  const auto first = std::lower_bound(markersByDepth_.begin(), markersByDepth_.end(),
+                                      std::make_pair(depth_ - reach, std::size_t(0)));
+  std::vector<std::size_t> onSlice;
+  for (auto it = first; it != markersByDepth_.end() && it->first <= depth_ + reach; ++it)
+    if (isOnSlice(markers.markers[it->second].position)) onSlice.push_back(it->second);
+  std::sort(onSlice.begin(), onSlice.end());  // the document's order, as drawn before
+  return onSlice;
 }
 
 vtkImageAlgorithm* SliceView::colouredSlice() const { return colours_; }

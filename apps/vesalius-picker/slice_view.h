@@ -66,7 +66,8 @@ class SliceView {
 
   // Redraws the markers on this slice (previews as rings), sized a fixed number of pixels; nothing to do
   // when the markers' `revision`, the slice and the zoom are those last drawn, so that a view whose
-  // content did not change is not rendered again.
+  // content did not change is not rendered again. The markers of a slice come from an index sorted by
+  // depth, rebuilt when `revision` changes, not from a scan of every marker at every slice step.
   void showMarkers(const MarkerSet& markers, std::uint64_t revision);
   // The coloured slice image (for the 3D view) and the map from its plane coordinates to world.
   vtkImageAlgorithm* colouredSlice() const;
@@ -81,6 +82,7 @@ class SliceView {
  private:
   void updateSlicePlane();
   void updateCrosshair();
+  std::vector<std::size_t> markersOnSlice(const MarkerSet& markers, std::uint64_t revision);
 
   SliceAxis axis_;
   SliceFrame frame_;
@@ -98,6 +100,8 @@ class SliceView {
   std::vector<std::function<void()>> onPlaneMoved_;  // overlays that follow the slice
   std::unique_ptr<MarkerLayer> markers_;
   std::optional<std::tuple<std::uint64_t, double, double>> drawnMarkers_;  // revision, depth, mm per pixel
+  std::optional<std::uint64_t> indexedRevision_;
+  std::vector<std::pair<double, std::size_t>> markersByDepth_;  // (depth, index), sorted
   bool changed_ = true;
 };
 

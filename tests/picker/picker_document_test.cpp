@@ -234,7 +234,9 @@ void expectSameMarkersByLabel(const MarkerSet& expected, const MarkerSet& actual
     EXPECT_EQ(e.kind, a->kind) << e.label;
     EXPECT_EQ(e.status, a->status) << e.label;
     EXPECT_EQ(e.description, a->description) << e.label;
-    if (e.status != MarkerStatus::Undefined) EXPECT_LE((e.position - a->position).norm(), 1e-9) << e.label;
+    if (e.status != MarkerStatus::Undefined) {
+      EXPECT_LE((e.position - a->position).norm(), 1e-9) << e.label;
+    }
   }
 }
 
@@ -252,7 +254,9 @@ TEST(PickerDocument, SavedAndAutosavedFilesKeepPreviews) {
   const MarkerSet saved = io::readMarkers(out);
   expectSameMarkersByLabel(document.markers(), saved);  // previews stay previews, with their confidence
   for (const Marker& m : saved.markers)
-    if (m.label == "suggested-2") EXPECT_DOUBLE_EQ(suggestionConfidence(m).value(), 0.48);
+    if (m.label == "suggested-2") {
+      EXPECT_DOUBLE_EQ(suggestionConfidence(m).value(), 0.48);
+    }
 }
 
 TEST(PickerDocument, AutosaveAfterEachEditRoundTripsAndSaveRemovesIt) {
