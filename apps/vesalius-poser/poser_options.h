@@ -15,6 +15,7 @@ struct PoserOptions {
   int frame = 0;                // frame shown at start
   std::string saveDir;          // key s writes the shown pose here
   double skinOpacity = 0.3;
+  bool untangle = false;         // repair inverted tets per frame (posing/untangle_tets.h): 0.3-1 s a frame
   std::string playEventsPath;   // vtkInteractorEventRecorder file played after start
   bool exitAfterPlay = false;
   std::string recordEventsPath; // records this session's events (for new GUI tests)

@@ -1,7 +1,8 @@
 // vesalius pose: an anatomy directory (`vesalius rig`) put into the poses of a motion or of joint angles
 // (seed 001 §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders,
 // and the quality of every pose (issue 6): inverted tets, posed/rest tet volumes, the skin's volume change and
-// the tissue vertices that leave their tet.
+// the tissue vertices that leave their tet. The tets skinning inverts or flattens are repaired first
+// (posing/untangle_tets.h) unless --no-untangle.
 #include "anatomy_rig.h"
 #include "common.h"
 #include "posing_session.h"
@@ -37,7 +38,7 @@ namespace {
 struct PoseOptions {
   std::string anatomy, motion, map, frames, angles, method = "lbs", out, volume, labels, pngDir;
   int frame = 0, every = 1;
-  bool everyGiven = false, qualityOnly = false, motionLps = false;
+  bool everyGiven = false, qualityOnly = false, motionLps = false, noUntangle = false;
   CommonOptions common;
 };
 
@@ -86,6 +87,7 @@ struct PoseQuality {
   double minVolumeRatio = 0;     // smallest posed / rest tet volume
   double skinVolumeChangePct = std::numeric_limits<double>::quiet_NaN();  // posed / rest skin volume - 1, %
   long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
+  posing::UntangleResult untangle;  // the repair before these were measured (zeros with --no-untangle)
 };
 
 // Measures PoseQuality against the rest rig, whose tet volumes, skin volume and inside vertices it keeps.
@@ -153,12 +155,14 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
                        const WriteOptions& options) {
   writeAtomically(path, options, [&](const std::string& temporary) {
     std::ofstream out(temporary);
-    out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside\n";
+    out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside"
+           "\tuntangled_tets\tuntangle_max_move_mm\n";
     out.precision(9);
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const PoseQuality& q = quality[p];
       out << (poses[p].frame < 0 ? "-" : std::to_string(poses[p].frame)) << '\t' << method << '\t' << q.inverted
-          << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\n';
+          << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\t'
+          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\n';
     }
     if (!out) throw BadInput(temporary, "cannot write");
   });
@@ -167,8 +171,14 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
 // Prints the worst value of each measure over all poses (with its frame) and puts it into the report.
 void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
                         long insideAtRest, io::Report& report) {
-  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0;
+  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0;
+  long repairedTotal = 0, boneOnly = 0, unrepaired = 0;
   for (std::size_t p = 0; p < quality.size(); ++p) {
+    repairedTotal += quality[p].untangle.badBefore;
+    boneOnly += quality[p].untangle.fixedBad;
+    unrepaired += quality[p].untangle.badAfter;
+    if (quality[p].untangle.badBefore > quality[repaired].untangle.badBefore) repaired = p;
+    if (quality[p].untangle.maxMove > quality[move].untangle.maxMove) move = p;
     if (quality[p].inverted > quality[inverted].inverted) inverted = p;
     if (quality[p].minVolumeRatio < quality[ratio].minVolumeRatio) ratio = p;
     if (std::abs(quality[p].skinVolumeChangePct) > std::abs(quality[skin].skinVolumeChangePct)) skin = p;
@@ -188,6 +198,17 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
             << quality[skin].skinVolumeChangePct << " % (frame " << frame(skin) << "), "
             << quality[left].leftOutside << " of " << insideAtRest
             << " tissue vertices inside at rest left outside (frame " << frame(left) << ")\n";
+  report.metric("untangled_tets", repairedTotal);
+  report.metric("max_untangled_tets", quality[repaired].untangle.badBefore);
+  report.metric("max_untangle_move_mm", quality[move].untangle.maxMove);
+  report.metric("untangle_unrepaired_tets", unrepaired);
+  report.metric("untangle_bone_only_tets", boneOnly);
+  std::cout << "untangled " << repairedTotal << " tets below " << posing::UntangleOptions().minVolumeRatio
+            << " of their rest volume in all, at most "
+            << quality[repaired].untangle.badBefore << " in a pose (frame " << frame(repaired)
+            << "); moved vertices by up to " << quality[move].untangle.maxMove << " mm (frame " << frame(move)
+            << "); " << unrepaired << " still below after, of which " << boneOnly
+            << " have only bone vertices (nothing to move)\n";
 }
 
 // The rest-pose volumes to re-pose, read once for all poses.
@@ -247,7 +268,7 @@ void runPose(const PoseOptions& o) {
   report.parameter("method", o.method);
   const PosingSession session = [&] {
     auto timer = report.time("embed");
-    return PosingSession(o.anatomy);
+    return PosingSession(o.anatomy, !o.noUntangle);
   }();
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();
@@ -259,15 +280,17 @@ void runPose(const PoseOptions& o) {
   std::vector<PoseQuality> quality;
   Progress progress(o.common.progressStyle());
   progress.begin("pose", o.method);
-  double skinningSeconds = 0;
+  double skinningSeconds = 0, untangleSeconds = 0;  // skinning includes untangling
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto start = std::chrono::steady_clock::now();
     Posed posed{MatrixX3d(), poses[p].world};
-    session.skinTets(poses[p].world, o.method, posed.tets);
+    const posing::UntangleResult untangled = session.skinTets(poses[p].world, o.method, posed.tets);
     skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<MatrixX3d> carried;
     session.carry(posed.tets, carried);
     quality.push_back(meter(posed.tets, carried));
+    quality.back().untangle = untangled;
+    untangleSeconds += untangled.seconds;
     if (!o.qualityOnly) {
       const std::string& name = poses[p].name;
       const std::string dir = name.empty() ? o.out : o.out + "/" + name;
@@ -282,9 +305,11 @@ void runPose(const PoseOptions& o) {
   writeQualityTable(o.out + "/quality.tsv", poses, quality, o.method, o.common.writeOptions());
   report.output("poses", o.out);
   report.metric("poses", poses.size());
-  report.metric("skinning_seconds_per_pose", skinningSeconds / poses.size());
+  report.metric("skinning_seconds_per_pose", (skinningSeconds - untangleSeconds) / poses.size());
+  report.metric("untangle_seconds_per_pose", untangleSeconds / poses.size());
   std::cout << o.out << ": " << poses.size() << " pose(s) by " << o.method << ", " << meshes.size()
-            << " mesh(es) each; skinning " << 1000 * skinningSeconds / poses.size() << " ms per pose\n";
+            << " mesh(es) each; skinning " << 1000 * (skinningSeconds - untangleSeconds) / poses.size()
+            << " ms and untangling " << 1000 * untangleSeconds / poses.size() << " ms per pose\n";
   reportWorstQuality(poses, quality, meter.insideAtRest(), report);
   o.common.finish(report);
 }
@@ -309,6 +334,8 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--volume", o->volume, "A scan in the rig's space to re-pose (trilinear)");
   cmd->add_option("--labels", o->labels, "A label map in the rig's space to re-pose (nearest neighbour)");
   cmd->add_option("--png-dir", o->pngDir, "Write a render of each pose here (needs a display)");
+  cmd->add_flag("--no-untangle", o->noUntangle,
+                "Keep the skinned tets as they are: no repair of the tets skinning inverts or flattens");
   cmd->add_flag("--quality-only", o->qualityOnly, "Write only quality.tsv (inverted tets, volume changes), no poses");
   cmd->add_option("--out", o->out, "Output directory: posed meshes, tets.vtu, skeleton.bvh; quality.tsv")->required();
   addCommonOptions(*cmd, o->common);

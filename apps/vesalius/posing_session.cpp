@@ -47,12 +47,13 @@ bool isSkinningMethod(const std::string& method) {
   return method == "lbs" || method == "dqs" || method == "cor" || method == "fem";
 }
 
-PosingSession::PosingSession(const std::string& anatomyDir) : rig_(readAnatomyRig(anatomyDir)) {
+PosingSession::PosingSession(const std::string& anatomyDir, bool untangle) : rig_(readAnatomyRig(anatomyDir)) {
   for (const std::string& path : rig_.meshes) {
     meshes_.push_back(io::readTriMesh(path));
     embeddings_.push_back(embedInTets(rig_.tets.V, rig_.tets.T, meshes_.back().V));
   }
   if (rig_.tets.vertexAttributes.real.count("cor_centre")) centres_ = rig_.centres();
+  if (untangle) untangle_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
 }
 
 int PosingSession::meshIndex(const std::string& stem) const {
@@ -61,8 +62,8 @@ int PosingSession::meshIndex(const std::string& stem) const {
   return -1;
 }
 
-void PosingSession::skinTets(const std::vector<Eigen::Isometry3d>& world, const std::string& method,
-                             MatrixX3d& tets) const {
+posing::UntangleResult PosingSession::skinTets(const std::vector<Eigen::Isometry3d>& world,
+                                              const std::string& method, MatrixX3d& tets) const {
   if (!isSkinningMethod(method)) throw UsageError("skinning method must be lbs, dqs, cor or fem, not " + method);
   const std::vector<Eigen::Isometry3d> all = posing::restToPosed(rig_.skeleton, world);
   std::vector<Eigen::Isometry3d> bones;
@@ -78,6 +79,7 @@ void PosingSession::skinTets(const std::vector<Eigen::Isometry3d>& world, const 
   } else {
     tets = posing::corotationalFem(V, rig_.tets.T, rig_.boneOfVertex(), bones).V;
   }
+  return untangle_ ? (*untangle_)(tets) : posing::UntangleResult{};
 }
 
 void PosingSession::carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const {
