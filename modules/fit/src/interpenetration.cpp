@@ -2,6 +2,7 @@
 #include "vesalius/fit/interpenetration.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/tet_adjacency.h"
 #include "vesalius/core/tet_locator.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/fem/plastic_fem.h"
@@ -26,13 +27,6 @@ std::vector<int> boundaryVertices(const MatrixX4i& T) {
   return v;
 }
 
-std::vector<std::vector<int>> tetsOfVertices(const MatrixX4i& T, Eigen::Index vertexCount) {
-  std::vector<std::vector<int>> tets(static_cast<std::size_t>(vertexCount));
-  for (int t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c) tets[std::size_t(T(t, c))].push_back(t);
-  return tets;
-}
-
 // The rows of `boundary` whose vertex lies in (or on) a tet of the other mesh.
 std::vector<int> verticesInside(const MatrixX3d& V, const std::vector<int>& boundary, const TetLocator& other) {
   std::vector<char> inside(boundary.size(), 0);
@@ -45,26 +39,11 @@ std::vector<int> verticesInside(const MatrixX3d& V, const std::vector<int>& boun
   return found;
 }
 
-// Marks the tets holding any seed vertex and those within `rings` further rings (tets sharing a vertex).
-void growRegion(const MatrixX4i& T, const std::vector<std::vector<int>>& tetsOfVertex, const std::vector<int>& seeds,
-                int rings, std::vector<char>& region) {
-  std::vector<char> tetSeen(std::size_t(T.rows()), 0), vertexSeen(tetsOfVertex.size(), 0);
-  std::vector<int> frontier = seeds;
-  for (int v : seeds) vertexSeen[std::size_t(v)] = 1;
-  for (int ring = 0; ring <= rings && !frontier.empty(); ++ring) {
-    std::vector<int> next;
-    for (int v : frontier)
-      for (int t : tetsOfVertex[std::size_t(v)]) {
-        if (tetSeen[std::size_t(t)]) continue;
-        tetSeen[std::size_t(t)] = region[std::size_t(t)] = 1;
-        for (int c = 0; c < 4; ++c)
-          if (!vertexSeen[std::size_t(T(t, c))]) {
-            vertexSeen[std::size_t(T(t, c))] = 1;
-            next.push_back(T(t, c));
-          }
-      }
-    frontier = std::move(next);
-  }
+// Marks the tets holding a vertex within `rings` rings of the seeds.
+void growRegion(const MatrixX4i& T, const VertexTets& tetsOf, const std::vector<int>& seeds, int rings,
+                std::vector<char>& region) {
+  for (int v : vertexRings(T, tetsOf, seeds, rings))
+    for (const int* t = tetsOf.begin(v); t != tetsOf.end(v); ++t) region[std::size_t(*t)] = 1;
 }
 
 // Where each penetrating vertex is pulled: `share` of the way to the other mesh's nearest surface point,
@@ -184,12 +163,12 @@ struct Side {
   MatrixX3d V;
   MatrixX3i F;
   std::vector<int> boundary;
-  std::vector<std::vector<int>> tetsOfVertex;
+  VertexTets tetsOfVertex;
   std::vector<char> region;
 
   explicit Side(const TetMesh& mesh)
       : T(mesh.T), V(mesh.V), F(tetBoundary(mesh.T)), boundary(boundaryVertices(mesh.T)),
-        tetsOfVertex(tetsOfVertices(mesh.T, mesh.V.rows())), region(std::size_t(mesh.T.rows()), 0) {}
+        tetsOfVertex(vertexTets(mesh.T, mesh.V.rows())), region(std::size_t(mesh.T.rows()), 0) {}
   long regionTets() const { return long(std::count(region.begin(), region.end(), 1)); }
 };
 

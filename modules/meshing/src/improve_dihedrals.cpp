@@ -1,6 +1,7 @@
 // Local smoothing of bad tets (see improve_dihedrals.h).
 #include "improve_dihedrals.h"
 
+#include "vesalius/core/tet_adjacency.h"
 #include "vesalius/core/tet_quality.h"
 
 #include <algorithm>
@@ -94,13 +95,6 @@ bool splitPinnedTets(TetMesh& mesh, std::vector<bool>& fixed, const std::set<Edg
   return true;
 }
 
-std::vector<std::vector<int>> tetsOfVertices(const TetMesh& mesh) {
-  std::vector<std::vector<int>> tetsOf(std::size_t(mesh.V.rows()));
-  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
-    for (int k = 0; k < 4; ++k) tetsOf[std::size_t(mesh.T(t, k))].push_back(int(t));
-  return tetsOf;
-}
-
 class Star {
  public:
   Star(TetMesh& mesh, const std::vector<int>& tets, int vertex, double maxVolume)
@@ -162,9 +156,9 @@ void improveDihedrals(TetMesh& mesh, double targetDegrees, double maxVolume, int
       fixed[std::size_t(faces(f, k))] = true;
       fixedEdges.insert(edge(faces(f, k), faces(f, (k + 1) % 3)));
     }
-  std::vector<std::vector<int>> tetsOf = tetsOfVertices(mesh);
+  VertexTets tetsOf = vertexTets(mesh.T, mesh.V.rows());
   for (int pass = 0; pass < passes; ++pass) {
-    if (splitPinnedTets(mesh, fixed, fixedEdges, targetDegrees)) tetsOf = tetsOfVertices(mesh);
+    if (splitPinnedTets(mesh, fixed, fixedEdges, targetDegrees)) tetsOf = vertexTets(mesh.T, mesh.V.rows());
     const Eigen::VectorXd minDihedral = tetQuality(mesh.V, mesh.T).minDihedral;
     bool any = false;
     for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
@@ -172,7 +166,7 @@ void improveDihedrals(TetMesh& mesh, double targetDegrees, double maxVolume, int
       any = true;
       for (int k = 0; k < 4; ++k) {
         const int v = mesh.T(t, k);
-        if (!fixed[std::size_t(v)]) Star(mesh, tetsOf[std::size_t(v)], v, maxVolume).optimize();
+        if (!fixed[std::size_t(v)]) Star(mesh, tetsOf.of(v), v, maxVolume).optimize();
       }
     }
     if (!any) return;

@@ -15,7 +15,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <numeric>
 #include <string>
 
 namespace vesalius::posing {
@@ -69,11 +68,10 @@ double weightedEnergy(const Corners& p, const Eigen::Matrix3d& restInverse, doub
 // One region: its free vertices (sorted global indices) and the tets they touch, whose other corners stay.
 class Region {
  public:
-  Region(const MatrixX3d& restV, const MatrixX4i& T, const std::vector<int>& tetStart,
-         const std::vector<int>& tetsOfVertex, std::vector<int> free, const MatrixX3d& posedV)
+  Region(const MatrixX3d& restV, const MatrixX4i& T, const VertexTets& tetsOf, std::vector<int> free,
+         const MatrixX3d& posedV)
       : free_(std::move(free)) {
-    for (int v : free_)
-      tets_.insert(tets_.end(), tetsOfVertex.begin() + tetStart[v], tetsOfVertex.begin() + tetStart[v + 1]);
+    for (int v : free_) tets_.insert(tets_.end(), tetsOf.begin(v), tetsOf.end(v));
     std::sort(tets_.begin(), tets_.end());
     tets_.erase(std::unique(tets_.begin(), tets_.end()), tets_.end());
     double total = 0;
@@ -218,13 +216,7 @@ TetUntangler::TetUntangler(const MatrixX3d& restV, const MatrixX4i& T, const Eig
     if (!(restVolume_[t] > 0))
       throw BadInput("", "untangle: rest tet " + std::to_string(t) + " is flat or inverted");
   for (Eigen::Index v = 0; v < restV.rows(); ++v) fixed_[std::size_t(v)] = boneOfVertex[v] >= 0;
-  tetStart_.assign(std::size_t(restV.rows()) + 1, 0);
-  for (Eigen::Index i = 0; i < T.size(); ++i) ++tetStart_[std::size_t(T.data()[i]) + 1];
-  std::partial_sum(tetStart_.begin(), tetStart_.end(), tetStart_.begin());
-  tetsOfVertex_.resize(std::size_t(T.size()));
-  std::vector<int> next(tetStart_.begin(), tetStart_.end() - 1);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c) tetsOfVertex_[std::size_t(next[std::size_t(T(t, c))]++)] = int(t);
+  tetsOf_ = vertexTets(T, restV.rows());
 }
 
 namespace {
@@ -268,7 +260,7 @@ UntangleResult TetUntangler::operator()(MatrixX3d& posedV) const {
   for (int rings = options_.rings; !(bad = movable(bad)).empty() && rings <= options_.maxRings; ++rings) {
     std::vector<Region> regions;
     for (std::vector<int>& free : freeRegions(bad, rings))
-      regions.emplace_back(restV_, T_, tetStart_, tetsOfVertex_, std::move(free), posedV);
+      regions.emplace_back(restV_, T_, tetsOf_, std::move(free), posedV);
     tbb::parallel_for(std::size_t(0), regions.size(),
                       [&](std::size_t r) { untangleRegion(regions[r], options_, posedV); });
     result.regions += long(regions.size());
@@ -285,29 +277,17 @@ UntangleResult TetUntangler::operator()(MatrixX3d& posedV) const {
 // The vertices of the bad tets grown by `rings` rings of tets, less the fixed ones, split into groups that
 // share no tet: each is one region, solved on its own.
 std::vector<std::vector<int>> TetUntangler::freeRegions(const std::vector<int>& bad, int rings) const {
-  std::vector<char> reached(fixed_.size(), 0);
-  std::vector<int> frontier, all;
+  std::vector<int> corners;
   for (int t : bad)
-    for (int c = 0; c < 4; ++c)
-      if (!reached[std::size_t(T_(t, c))]++) frontier.push_back(T_(t, c));
-  for (int ring = 0;; ++ring) {
-    all.insert(all.end(), frontier.begin(), frontier.end());
-    if (ring == rings) break;
-    std::vector<int> next;
-    for (int v : frontier)
-      for (int i = tetStart_[std::size_t(v)]; i < tetStart_[std::size_t(v) + 1]; ++i)
-        for (int c = 0; c < 4; ++c)
-          if (!reached[std::size_t(T_(tetsOfVertex_[std::size_t(i)], c))]++)
-            next.push_back(T_(tetsOfVertex_[std::size_t(i)], c));
-    frontier.swap(next);
-  }
+    for (int c = 0; c < 4; ++c) corners.push_back(T_(t, c));
+  std::vector<int> all = vertexRings(T_, tetsOf_, corners, rings);
   std::vector<int> parent(fixed_.size(), -1);
   for (int v : all)
     if (!fixed_[std::size_t(v)]) parent[std::size_t(v)] = v;
   for (int v : all)
-    for (int i = tetStart_[std::size_t(v)]; parent[std::size_t(v)] >= 0 && i < tetStart_[std::size_t(v) + 1]; ++i)
+    for (const int* t = tetsOf_.begin(v); parent[std::size_t(v)] >= 0 && t != tetsOf_.end(v); ++t)
       for (int c = 0; c < 4; ++c) {
-        const int w = T_(tetsOfVertex_[std::size_t(i)], c);
+        const int w = T_(*t, c);
         if (parent[std::size_t(w)] >= 0) parent[std::size_t(findRoot(parent, w))] = findRoot(parent, v);
       }
   std::sort(all.begin(), all.end());

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "vesalius/core/mesh.h"
+#include "vesalius/core/tet_adjacency.h"
 
 #include <Eigen/Core>
 
@@ -77,7 +78,7 @@ class TetUntangler {
   MatrixX4i T_;
   std::vector<bool> fixed_;
   Eigen::VectorXd restVolume_;
-  std::vector<int> tetStart_, tetsOfVertex_;  // the tets of vertex v: tetsOfVertex_[tetStart_[v] .. tetStart_[v+1])
+  VertexTets tetsOf_;
   UntangleOptions options_;
 };
 
