@@ -16,7 +16,8 @@ namespace {
 void validate(const MatrixX3d& points, const MatrixX3d& normals, const NormalEdgeOptions& o) {
   for (double v : {o.sigmaMm, o.searchMm, o.stepMm})
     if (!(v > 0) || !std::isfinite(v)) throw UsageError("edge search: sigma, search and step must be positive mm");
-  if (!(o.sideMm >= 0) || !(o.bandMads > 0)) throw UsageError("edge search: side and band must be positive");
+  if (!(o.sideMm >= 0) || !(o.bandMads > 0) || !(o.contrastMads >= 0) || !std::isfinite(o.contrastMads))
+    throw UsageError("edge search: side, band and contrast must be positive");
   if (o.stepMm > o.searchMm) throw UsageError("edge search: the step must not exceed the search distance");
   if (points.rows() != normals.rows()) throw UsageError("edge search: one normal per point is needed");
   for (Eigen::Index i = 0; i < normals.rows(); ++i)
@@ -97,21 +98,36 @@ double edgeValue(double derivative, EdgePolarity polarity) {
   return std::abs(derivative);
 }
 
-// The organ's intensity: a value within [low, high] is taken for the organ's tissue.
+// The organ's intensity: a value within [low, high] is taken for the organ's tissue; deviation is its
+// robust standard deviation (1.4826 MAD).
 struct Band {
-  double low = -1e300, high = 1e300;
+  double low = -1e300, high = 1e300, deviation = 0;
   bool holds(double v) const { return v >= low && v <= high; }
 };
 
-// Index of the largest interior local maximum (above round-off) of the edge values whose inner side is in `organ` and
-// whose outer side is not, or -1. With no band, any peak.
-int strongestPeak(const Profile& profile, EdgePolarity polarity, const Band* organ = nullptr) {
+// The change from the inner to the outer side in the edge's polarity: positive when the outer side is
+// the side the polarity expects (darker for Falling).
+double step(double inner, double outer, EdgePolarity polarity) {
+  if (polarity == EdgePolarity::Falling) return inner - outer;
+  if (polarity == EdgePolarity::Rising) return outer - inner;
+  return std::abs(outer - inner);
+}
+
+// The tissue check: the inner side in the organ's band, the outer side `contrast` deviations beyond it.
+bool organOnInnerSide(const Profile& profile, int k, EdgePolarity polarity, const Band& organ, double contrast) {
+  const double inner = profile.inner(k), outer = profile.outer(k);
+  return organ.holds(inner) && step(inner, outer, polarity) >= contrast * organ.deviation;
+}
+
+// Index of the largest interior local maximum (above round-off) of the edge values that passes the tissue
+// check against `organ`, or -1. With no band, any peak.
+int strongestPeak(const Profile& profile, EdgePolarity polarity, const Band* organ = nullptr, double contrast = 0) {
   const std::vector<double>& d = profile.derivative;
   int best = -1;
   for (std::size_t k = 1; k + 1 < d.size(); ++k) {
     const double e = edgeValue(d[k], polarity);
     if (!(e > profile.noise && e >= edgeValue(d[k - 1], polarity) && e > edgeValue(d[k + 1], polarity))) continue;
-    if (organ && !(organ->holds(profile.inner(int(k))) && !organ->holds(profile.outer(int(k))))) continue;
+    if (organ && !organOnInnerSide(profile, int(k), polarity, *organ, contrast)) continue;
     if (best < 0 || e > edgeValue(d[std::size_t(best)], polarity)) best = int(k);
   }
   return best;
@@ -128,8 +144,8 @@ double median(std::vector<double> v) {
 // inside is the organ, so the median is the organ's intensity. (The inner sides of each profile's
 // strongest edge were tried first: 59-77 % of suggestions on the boundary over four seeds, against 66-72 %.)
 // An edge between two other tissues (where the template is off the organ) falls outside the band.
-// The band is at least 1 % of the range of the profiles wide either way: a uniform organ (MAD 0, as in a
-// phantom) still holds its own blurred values.
+// The deviation is at least 0.5 % of the range of the profiles (the band 1 % either way with the default
+// bandMads): a uniform organ (MAD 0, as in a phantom) still holds its own blurred values.
 Band organBand(const std::vector<Profile>& profiles, const NormalEdgeOptions& o) {
   std::vector<double> inner;
   double lowest = 1e300, highest = -1e300;
@@ -142,15 +158,15 @@ Band organBand(const std::vector<Profile>& profiles, const NormalEdgeOptions& o)
   if (inner.size() < 3) return {};
   const double m = median(inner);
   for (double& v : inner) v = std::abs(v - m);
-  const double spread = std::max(o.bandMads * 1.4826 * median(inner), 0.01 * (highest - lowest));
-  return {m - spread, m + spread};
+  const double deviation = std::max(1.4826 * median(inner), 0.005 * (highest - lowest));
+  return {m - o.bandMads * deviation, m + o.bandMads * deviation, deviation};
 }
 
 NormalEdge edgeOnProfile(const Profile& profile, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
                          EdgePolarity polarity, const Band* organ, const NormalEdgeOptions& o) {
   NormalEdge edge;
   edge.position = p;
-  const int k = profile.derivative.empty() ? -1 : strongestPeak(profile, polarity, organ);
+  const int k = profile.derivative.empty() ? -1 : strongestPeak(profile, polarity, organ, o.contrastMads);
   if (k < 0) return edge;
   std::vector<double> magnitude;
   for (double d : profile.derivative) magnitude.push_back(std::abs(d));

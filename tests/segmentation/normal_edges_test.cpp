@@ -1,7 +1,8 @@
 // findNormalEdges on a synthetic ball: a bright ball (100) in a dark background (0), searched from points
 // 3 mm inside its surface along the outward normals, must find the ball's surface (falling edge) to a
 // fraction of a millimetre; a ball inside a brighter shell of another tissue keeps the ball's edge when
-// the tissue check is on; a flat image gives nothing.
+// the tissue check is on; an outer tissue within the organ's band counts as another tissue where it is two
+// robust deviations darker than the organ's side; a flat image gives nothing.
 #include "vesalius/segmentation/normal_edges.h"
 
 #include "vesalius/core/error.h"
@@ -73,6 +74,40 @@ TEST(NormalEdges, TissueCheckKeepsTheOrgansEdgeBesideAStrongerOne) {
     ASSERT_TRUE(e.found);
     EXPECT_NEAR(e.position.norm(), kRadius, 0.6) << "with the check: the organ's edge";
   }
+}
+
+TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
+  // Organ 100 + 10 z/r to r = 20 (brighter towards +z: robust deviation 10 · 0.5 · 1.4826 = 7.4, band 100
+  // ± 14.8), then "muscle" at 92, inside the band, to the cube's edge. Where the organ reads 2 deviations
+  // (14.8) above the muscle (z/r above 0.68) its falling edge at r = 20 is kept although the outer side lies
+  // in the band; where the step is smaller (z/r below 0.5: at most 13) there is no edge of the organ.
+  const Image scan = radialImage([](double r) { return r < kRadius ? 100.0 : 92.0; });
+  Image textured = scan;
+  const GridGeometry& g = scan.geometry;
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i) {
+        const Eigen::Vector3d x = g.indexToWorld(Eigen::Vector3d(i, j, k));
+        if (x.norm() < kRadius) textured.at(i, j, k) += float(10 * x.z() / x.norm());
+      }
+  const MatrixX3d normals = directions(50), points = (kRadius - 3) * normals;
+  NormalEdgeOptions options;
+  options.sigmaMm = 1.0;
+  const NormalEdges found = findNormalEdges(textured, points, normals, options);
+  int kept = 0, dropped = 0;
+  for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+    const NormalEdge& e = found.edges[std::size_t(i)];
+    if (normals(i, 2) > 0.75) {
+      ASSERT_TRUE(e.found) << "z/r " << normals(i, 2);
+      EXPECT_NEAR(e.position.norm(), kRadius, 0.6);
+      ++kept;
+    } else if (normals(i, 2) < 0.5) {
+      EXPECT_FALSE(e.found) << "z/r " << normals(i, 2);
+      ++dropped;
+    }
+  }
+  EXPECT_EQ(kept, 6);
+  EXPECT_EQ(dropped, 37);
 }
 
 TEST(NormalEdges, FlatImageHasNoEdgesAndBadOptionsAreRefused) {

@@ -17,9 +17,13 @@
 // tissues (fat and muscle). The organ's intensity is learned from the scan itself: the median and MAD of
 // the blurred scan searchMm + sideMm inside every point (most of a roughly placed template's inside is
 // the organ), at least 1 % of the profiles' value range wide either way. Then each profile keeps its
-// strongest edge whose inner side lies within the organ's band and whose outer side does not, as an active
-// shape model's grey-level profile model would (Cootes et al. 1995 §5), without a training set. Changes
-// within round-off of the blur (1e-5 of the value per step) are not edges.
+// strongest edge whose inner side lies within the organ's band and whose outer side lies contrastMads
+// robust deviations beyond the inner side in the edge's polarity (darker for Falling), as an active shape
+// model's grey-level profile model would (Cootes et al. 1995 §5), without a training set. The step is
+// measured from the inner side rather than asking the outer side to leave the band: tissue just below the
+// organ's band (muscle against liver on CT) can then be the outer side of the organ's edge, and a small
+// step out of the band's lower end (from muscle to something slightly darker) is not an edge of the
+// organ. Changes within round-off of the blur (1e-5 of the value per step) are not edges.
 // Confidence = contrast · closeness, in [0, 1]: contrast = (peak − median) / (peak + median) with the
 // median of |∂I/∂n| over the profile (0 for a flat or noisy profile, 1 for one isolated edge), closeness
 // = 1 − |s| / (2 searchMm) (an edge far from the template is less likely the organ's).
@@ -45,7 +49,9 @@ struct NormalEdgeOptions {
   // (see above); the organ's intensity band is median ± bandMads robust deviations of the inner sides.
   bool checkTissue = true;
   double sideMm = 3.0;
-  double bandMads = 2.0;  // narrower than 3: muscle and spleen are close to liver on CT
+  double bandMads = 2.0;      // narrower than 3: muscle and spleen are close to liver on CT
+  double contrastMads = 2.0;  // the outer side this many robust deviations beyond the inner (see above);
+                              // 2 measured best on the test CT (docs/methods/marker-suggestions.md)
 };
 
 struct NormalEdge {
