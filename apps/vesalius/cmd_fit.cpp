@@ -1,13 +1,15 @@
-// vesalius fit: a template organ (tet mesh, or a closed surface tetrahedralized first) fitted to markers
-// picked on a scan by plastic strains (seed 002): ICP markers and landmarks (§3.1), attachments to a bone
-// (§3.3, §4.1.2) or none (§3.6), a surface embedded in the template carried along (§4.3). The report holds
-// what the seed plots: per-marker errors and their histogram (Fig. 16), the objective per iteration
-// (Fig. 9), the minimum dihedral angles before and after (Fig. 17); the picture shows the fitted surface's
-// contour over the scan's slices (Fig. 18) beside the error histogram.
+// vesalius fit: a template organ (tet mesh, or a surface tetrahedralized first, closed first if it is not)
+// fitted to markers picked on a scan by plastic strains (seed 002): ICP markers and landmarks (§3.1),
+// attachments to a bone (§3.3, §4.1.2) or none (§3.6), a surface embedded in the template carried along
+// (§4.3). The report holds what the seed plots: per-marker errors and their histogram (Fig. 16), the
+// objective per iteration (Fig. 9), the minimum dihedral angles before and after (Fig. 17); the picture
+// shows the fitted surface's contour over the scan's slices (Fig. 18) beside the error histogram.
 #include "cmd_fit.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/markers.h"
+#include "vesalius/core/mesh_measures.h"
+#include "vesalius/core/self_intersections.h"
 #include "vesalius/core/tet_quality.h"
 #include "vesalius/fem/plastic_fem.h"
 #include "vesalius/fem/plastic_strain.h"
@@ -20,6 +22,7 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/meshing/closed_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/decimate_surface.h"
 #include "vesalius/meshing/tetrahedralize.h"
@@ -38,6 +41,7 @@
 #include <map>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 namespace vesalius::cli {
 
@@ -83,6 +87,31 @@ struct Template {
   std::optional<TriMesh> surface;  // the surface a surface template was tetrahedralized from
 };
 
+// A surface template that is not a closed 2-manifold or whose triangles cross (OpenSim's bones are such)
+// cannot be tetrahedralized: it is closed by its winding number (meshing/closed_surface.h) at
+// --template-faces or, without it, its own face count, and stderr says so. nullopt when it needs nothing.
+std::optional<TriMesh> closedTemplate(const FitCommandOptions& o, const TriMesh& surface, io::Report& report) {
+  const EdgeCounts edges = countEdges(surface.F);
+  const std::size_t crossings = surface.F.rows() ? selfIntersections(surface.V, surface.F).size() : 0;
+  if (edges.boundary == 0 && edges.nonManifold == 0 && crossings == 0) return std::nullopt;
+  meshing::ClosedSurfaceOptions options;
+  options.targetFaces = o.templateFaces > 0 ? o.templateFaces : int(surface.F.rows());
+  TriMesh closed;
+  try {
+    closed = meshing::closedSurface(surface, options);
+  } catch (const BadInput& e) {
+    throw BadInput(o.templ, e.problem());
+  }
+  std::cerr << o.templ << ": not a closed 2-manifold (" << edges.boundary << " boundary edges, " << edges.nonManifold
+            << " non-manifold edges, " << crossings << " crossing triangle pairs); closed by its winding number into "
+            << closed.F.rows() << " triangles, which are tetrahedralized and carried to --surface-out\n";
+  report.metric("template_repair", {{"boundary_edges", edges.boundary},
+                                    {"non_manifold_edges", edges.nonManifold},
+                                    {"crossing_triangle_pairs", crossings},
+                                    {"closed_triangles", closed.F.rows()}});
+  return closed;
+}
+
 Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   const std::optional<io::MeshKind> kind = io::meshFileKind(o.templ);
   if (!kind)
@@ -97,6 +126,9 @@ Template readTemplate(const FitCommandOptions& o, io::Report& report) {
     t.surface = io::readTriMesh(o.templ);
   }
   auto timer = report.time("tetrahedralize");
+  // The broken original is not kept for --surface-out: its triangles may cross, and the closed surface is
+  // what the tets fill (--embed carries the original if wanted).
+  if (std::optional<TriMesh> closed = closedTemplate(o, *t.surface, report)) t.surface = std::move(closed);
   meshing::TetrahedralizeOptions options;
   options.targetTets = o.targetTets;
   t.tets = meshing::tetrahedralize(meshing::decimateSurface(*t.surface, o.templateFaces), options, o.templ);
@@ -577,8 +609,9 @@ void addFitCommand(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("fit", "Fit a template organ to markers picked on a scan (plastic strains, seed 002)");
   cmd->add_option("--template", o->templ,
-                  "Template: tet mesh (.vtu .vtk .msh .mesh .ele) or closed surface "
-                  "(.stl .obj .ply .vtp), in its own (template) space, mm")
+                  "Template: tet mesh (.vtu .vtk .msh .mesh .ele) or surface (.stl .obj .ply .vtp; one that is "
+                  "open, non-manifold or self-crossing is closed by its winding number first), in its own "
+                  "(template) space, mm")
       ->required();
   cmd->add_option("--icp", o->icp,
                   "ICP markers on the organ's boundary in the scan (.mrk.json .fcsv .csv): every "

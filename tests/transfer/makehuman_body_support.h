@@ -7,12 +7,10 @@
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/skeleton_io.h"
+#include "vesalius/meshing/winding_number.h"
 #include "vesalius/transfer/body_frame.h"
 #include "vesalius/transfer/skeleton_placement.h"
 
-#include <tbb/parallel_for.h>
-
-#include <cmath>
 #include <map>
 #include <string>
 
@@ -40,22 +38,10 @@ inline const MakeHumanBody& makeHumanBody() {
   return body;
 }
 
-// Generalized winding number of the closed-ish surface (V, F) at each row of P (Jacobson et al. 2013,
-// solid angles by van Oosterom and Strackee): about 1 inside, 0 outside, robust to small holes.
+// Generalized winding number of the closed-ish surface (V, F) at each row of P, summed exactly
+// (meshing/winding_number.h): about 1 inside, 0 outside, robust to small holes.
 inline Eigen::VectorXd windingNumbers(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3d& P) {
-  Eigen::VectorXd w(P.rows());
-  tbb::parallel_for(Eigen::Index(0), P.rows(), [&](Eigen::Index i) {
-    double sum = 0;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const Eigen::Vector3d a = V.row(F(f, 0)) - P.row(i), b = V.row(F(f, 1)) - P.row(i), c = V.row(F(f, 2)) - P.row(i);
-      const double la = a.norm(), lb = b.norm(), lc = c.norm();
-      const double numerator = a.dot(b.cross(c));
-      const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-      sum += 2.0 * std::atan2(numerator, denominator);
-    }
-    w[i] = sum / (4.0 * M_PI);
-  });
-  return w;
+  return meshing::windingNumbers(V, F, P, meshing::WindingNumberOptions{0.0});
 }
 
 }  // namespace vesalius::test

@@ -1,0 +1,80 @@
+// Closed surfaces from broken ones by the winding number (closed_surface.h).
+#include "vesalius/meshing/closed_surface.h"
+
+#include "well_composed.h"
+#include "vesalius/core/error.h"
+#include "vesalius/core/label_map.h"
+#include "vesalius/core/mesh_measures.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/mesh_volume.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
+namespace vesalius::meshing {
+namespace {
+
+void checkInput(const TriMesh& mesh, const ClosedSurfaceOptions& options) {
+  if (options.resolution < 8 || options.targetFaces < 0)
+    throw UsageError("closing a surface needs a resolution of at least 8 voxels and target faces >= 0");
+  if (mesh.F.rows() == 0) throw BadInput("", "the surface has no triangles to close");
+  mesh.validate("");
+}
+
+// The grid: `resolution` voxels along the longest side, two voxels of margin so the outer layer is
+// outside, and the cap just large enough for that.
+GridGeometry windingGrid(const TriMesh& mesh, int resolution) {
+  const double longest = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
+  if (!(longest > 0)) throw BadInput("", "the surface to close has no extent");
+  CoveringGridOptions grid;
+  grid.voxelSizeMm = longest / resolution;
+  grid.marginMm = 2.0 * grid.voxelSizeMm;
+  grid.maxSize = Eigen::Vector3i::Constant(resolution + 6);
+  return coveringGrid({&mesh}, grid);
+}
+
+// Label 1 where the winding number (signed so that the mesh's enclosed volume is positive) is >= 1/2;
+// the grid's outer layer stays 0 as makeWellComposed requires.
+Grid<Label> insideVoxels(const TriMesh& mesh, const GridGeometry& g, const WindingNumberOptions& options) {
+  MatrixX3d centres(g.voxelCount(), 3);
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.size.z()), [&](const tbb::blocked_range<int>& slices) {
+    for (int k = slices.begin(); k < slices.end(); ++k)
+      for (int j = 0; j < g.size.y(); ++j)
+        for (int i = 0; i < g.size.x(); ++i)
+          centres.row(g.linearIndex(i, j, k)) = g.indexToWorld(Eigen::Vector3d(i, j, k)).transpose();
+  });
+  const Eigen::VectorXd w = windingNumbers(mesh.V, mesh.F, centres, options);
+  const double sign = enclosedVolume(mesh.V, mesh.F) < 0 ? -1.0 : 1.0;
+  Grid<Label> inside(g, 0);
+  for (int k = 1; k + 1 < g.size.z(); ++k)
+    for (int j = 1; j + 1 < g.size.y(); ++j)
+      for (int i = 1; i + 1 < g.size.x(); ++i) {
+        const std::int64_t n = g.linearIndex(i, j, k);
+        inside.values[std::size_t(n)] = sign * w[n] >= 0.5;
+      }
+  return inside;
+}
+
+}  // namespace
+
+TriMesh closedSurface(const TriMesh& mesh, const ClosedSurfaceOptions& options) {
+  checkInput(mesh, options);
+  LabelMap solid;
+  solid.labels = insideVoxels(mesh, windingGrid(mesh, options.resolution), options.winding);
+  if (std::find(solid.labels.values.begin(), solid.labels.values.end(), Label(1)) == solid.labels.values.end())
+    throw BadInput("", "the surface encloses no voxel at resolution " + std::to_string(options.resolution));
+  // Voxels meeting across an edge or a corner only would give the iso-surface non-manifold edges.
+  detail::makeWellComposed(solid.labels);
+  SurfaceOptions surface;
+  surface.smoothingIterations = options.smoothingIterations;
+  surface.targetFaces = options.targetFaces;
+  TriMesh closed = labelSurface(solid, 1, surface);
+  closed.faceAttributes = {};
+  return closed;
+}
+
+}  // namespace vesalius::meshing
