@@ -1,6 +1,7 @@
 // vesalius transfer: a reference anatomy carried into a target body surface (seed 000): skin registration
-// (§4), erosion by the fat thickness (§5), Laplace interpolation (§7), bone registration (§8), final
-// interpolation; with the anatomical rules measured in the report.
+// (§4), erosion by the fat thickness (§5) and registration of the lean reference onto the eroded skin,
+// Laplace interpolation (§7), bone registration (§8), final interpolation; with the anatomical rules
+// measured in the report.
 #include "bone_fat_amounts.h"
 #include "common.h"
 #include "thickness_input.h"
@@ -225,6 +226,19 @@ void runTransfer(const TransferOptions& o) {
     report.metric("erosion_limited_vertices", e.limited);
     report.metric("erosion_new_self_intersections", e.newSelfIntersections);
   }
+  if (fat.maxCoeff() > 0) {
+    // The reference is lean (§3: "warp our lean source anatomy to the sub-fat part of the target"), so it is
+    // registered again, onto the eroded skin. Erosion takes the fat off along the normals only; the first
+    // registration had scaled the reference to the fatter body (its similarity alignment) and stretched it
+    // along the surface, and that stretch would carry into the bones (rule R3).
+    auto timer = report.time("sub-fat registration");
+    const transfer::SkinRegistration subFat =
+        transfer::registerSkin(reference.skin.V, reference.skin.F, eroded.V, reference.skin.F, registrationOptions);
+    report.metric("sub_fat_registration_mean_distance_mm", subFat.finalMeanDistance);
+    report.metric("sub_fat_registration_scale", subFat.alignment.scale);
+    eroded.V = subFat.V;
+  }
+  report.metric("registration_scale", registered.alignment.scale);
 
   progress.begin("transfer", "interpolation, bone registration, final interpolation");
   const GridGeometry grid = fieldGrid(reference, o.voxelSize);

@@ -159,14 +159,14 @@ TEST(CliTransfer, ExtraFatKeepsTheBones) {
   std::cout << "eroded skin to the lean skin: " << erodedToLean << " mm; worst bone: " << worstBoneDistance(fatter, lean)
             << " mm; Jacobian min " << report["metrics"]["jacobian_min"] << " at " << report["metrics"]["jacobian_min_at"] << "\n";
   EXPECT_LT(erodedToLean, 1.0);
-  // Measured 1.15 mm, over the 1 mm: erosion moves the registered skin back along its normals,
-  // but the registration also stretched it along the surface (the fat body's girth is larger), and that
-  // stretch carries into the bones by about 1 % (docs/methods/anatomy-transfer.md).
-  EXPECT_LT(worstBoneDistance(fatter, lean), 1.25);
-  // The interpolation folds nowhere inside; at the skin shell one cell (det −0.09, the front of the chest,
-  // where the dilation filled a crease) comes from the registered, eroded vertices themselves.
+  // Measured 0.68 mm (eroded skin 0.78 mm from the lean one). Before the reference was registered again
+  // onto the eroded skin, 1.15 mm: erosion moved the registered skin back along its normals only, and the
+  // registration onto the fatter body had scaled and stretched it along the surface, which carried into
+  // the bones by about 1 % (docs/methods/anatomy-transfer.md).
+  EXPECT_LT(worstBoneDistance(fatter, lean), 1.0);
+  // The field folds nowhere (measured: det min 0.22; before, one cell at the skin shell, det −0.09).
+  EXPECT_GT(report["metrics"]["jacobian_min"].get<double>(), 0.0);
   EXPECT_GT(report["metrics"]["jacobian_interior_min"].get<double>(), 0.0);
-  EXPECT_LE(report["metrics"]["jacobian_nonpositive_cells"].get<long>(), 1);
 }
 
 TEST(CliTransfer, AWiderFlatterBody) {
