@@ -10,20 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 namespace vesalius::test {
 namespace {
 
-namespace fs = std::filesystem;
-
 const std::string kTemplate = std::string(VESALIUS_TESTDATA) + "/muscles/VHF_Left_Muscle_GluteusMedius_smooth.stl";
 
-std::string path(const std::string& name) {
-  const fs::path dir = fs::path(outputDir()) / "fit_ct";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string path(const std::string& name) { return outputPath("fit_ct", name); }
 
 TEST(CliFitCt, GluteusMediusAttachedToTheHipBone) {
   const std::string bone = path("hip_left.vtp"), icp = path("gmed_icp.mrk.json"), check = path("gmed_check.mrk.json"),

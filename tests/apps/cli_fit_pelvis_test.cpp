@@ -10,20 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 namespace vesalius::test {
 namespace {
 
-namespace fs = std::filesystem;
-
 const std::string kTemplate = std::string(VESALIUS_TESTDATA) + "/skeleton-opensim/Geometry/l_pelvis.vtp";
 
-std::string path(const std::string& name) {
-  const fs::path dir = fs::path(outputDir()) / "fit_pelvis";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string path(const std::string& name) { return outputPath("fit_pelvis", name); }
 
 TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
   const std::string icp = path("hip_icp.mrk.json"), check = path("hip_check.mrk.json"), out = path("hip_fitted.vtu"),

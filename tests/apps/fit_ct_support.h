@@ -18,12 +18,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace vesalius::test {
+
+// `name` in the test's own folder `dir` under the output directory, made if missing.
+inline std::string outputPath(const std::string& dir, const std::string& name) {
+  const std::filesystem::path folder = std::filesystem::path(outputDir()) / dir;
+  std::filesystem::create_directories(folder);
+  return (folder / name).string();
+}
 
 inline nlohmann::json readJson(const std::string& file) {
   std::ifstream in(file);
