@@ -482,6 +482,8 @@ void reportInputs(const FitCommandOptions& o, io::Report& report) {
   report.parameter("template_faces", o.templateFaces);
   report.parameter("icp_iterations", o.solver.icpIterations);
   report.parameter("max_icp_error_mm", o.solver.maxIcpError);
+  report.parameter("min_icp_gain", o.solver.minIcpGain);
+  report.parameter("min_icp_gain_mm", o.solver.minIcpGainMm);
   report.parameter("marker_weight", o.solver.markerWeight);
   report.parameter("attachment_weight", o.solver.attachmentWeight);
 }
@@ -517,6 +519,10 @@ void reportFit(const TetMesh& templ, const Start& start, const FitInputs& in, co
   report.metric("attachment_error_mm",
                 meanAndMax(materialPointErrors(templ, p.attachmentMaterial, p.attachmentTargets, r.V)));
   report.metric("iterations", iterationRows(r.history));
+  nlohmann::json ends = nlohmann::json::array();
+  for (const fit::FitStageEnd& e : r.stageEnds)
+    ends.push_back({{"stage", e.stage}, {"iterations", e.iterations}, {"stopped_by", e.reason}});
+  report.metric("stages", ends);
   report.metric("min_dihedral",
                 {{"before", dihedralMetrics(start.x0, templ.T)}, {"after", dihedralMetrics(r.V, templ.T)}});
   const double volume = tetVolumes(templ.V, templ.T).sum(), fitted = tetVolumes(r.V, templ.T).sum();
@@ -537,6 +543,9 @@ void printSummary(const FitCommandOptions& o, const TetMesh& templ, const Start&
             << r.history.size() << " iterations in " << std::lround(seconds * 10) / 10.0 << " s\n"
             << "ICP error before: mean " << mm(before.mean()) << ", max " << mm(before.maxCoeff()) << "\n"
             << "ICP error after:  mean " << mm(r.icpErrors.mean()) << ", max " << mm(r.icpErrors.maxCoeff()) << "\n";
+  if (!r.stageEnds.empty())
+    std::cout << "last stage (" << r.stageEnds.back().stage << ") ended by " << r.stageEnds.back().reason << " after "
+              << r.stageEnds.back().iterations << " iterations\n";
   if (in.skipped)
     std::cout << in.skipped << " marker(s) skipped: not placed yet, or not ICP markers in the --icp file\n";
 }
@@ -650,6 +659,15 @@ void addFitCommand(CLI::App& app) {
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_option("--max-icp-error", o->solver.maxIcpError, "The ICP stage stops when every marker is this close (mm)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--min-icp-gain", o->solver.minIcpGain,
+                  "The ICP stage stops when two iterations lower the mean ICP error by less than this fraction "
+                  "of it (0: off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--min-icp-gain-mm", o->solver.minIcpGainMm,
+                  "The ICP stage stops when two iterations lower the mean ICP error by less than this (mm; 0: off)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--marker-weight", o->solver.markerWeight,

@@ -224,6 +224,17 @@ TEST_F(CliFit, FitsAStretchedLiverToTheMarkersAndReportsIt) {
   ASSERT_FALSE(m["iterations"].empty());
   for (const char* field : {"objective", "smoothness", "constraints", "step", "mean_icp_error_mm", "seconds"})
     EXPECT_TRUE(isNumber(m["iterations"].back()[field])) << field;
+  // Why each stage ended; the last one is the ICP stage, and its iterations are the report's last rows.
+  ASSERT_FALSE(m["stages"].empty());
+  const nlohmann::json& icpStage = m["stages"].back();
+  EXPECT_EQ(icpStage["stage"], "icp");
+  const std::string stoppedBy = icpStage["stopped_by"];
+  EXPECT_TRUE(stoppedBy == "iterations" || stoppedBy == "max_icp_error" || stoppedBy == "icp_gain" ||
+              stoppedBy == "step" || stoppedBy == "objective")
+      << stoppedBy;
+  EXPECT_EQ(m["iterations"].back()["stage"], "icp");
+  EXPECT_EQ(m["iterations"].back()["iteration"].get<int>() + 1, icpStage["iterations"].get<int>());
+  expectContains(r.out, "ended by " + stoppedBy);
   for (const char* when : {"before", "after"}) {
     EXPECT_TRUE(isNumber(m["min_dihedral"][when]["min_deg"])) << when;
     EXPECT_FALSE(m["min_dihedral"][when]["histogram"].empty()) << when;

@@ -178,7 +178,7 @@ void expectFittedLiver(const std::string& out, const nlohmann::json& report) {
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
   const nlohmann::json& fit = report["metrics"]["fit"];
   EXPECT_EQ(fit["markers"].get<long>(), 150);
-  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 2.5);  // measured 2.14 mm, from 6.73 mm
+  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 2.5);  // measured 2.17 mm (session 13), from 6.73 mm
   EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 0.4 * fit["mean_error_before_mm"].get<double>());
 
   const LabelMap organs = io::readLabelMap(kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz",

@@ -22,10 +22,14 @@ namespace vesalius {
 namespace {
 
 // CHOLMOD's supernodal factorization and solves call BLAS (OpenBLAS on Debian) and run parts in OpenMP
-// regions. Both libraries start their own threads, whose idle workers spin (sched_yield) against TBB's on
-// the same cores: a 22k-tet fit spent most of its time in the kernel. TBB already keeps the cores busy,
-// so CHOLMOD and its BLAS run on the calling thread. The OpenMP setting is per thread, so every call sets
-// it. Looked up at run time: any BLAS and an OpenMP-free CHOLMOD need none of it.
+// regions. Both libraries start their own threads, whose idle workers spin (sched_yield) and sleep (futex)
+// against TBB's on the same cores: a 22k-tet fit spent most of its time in the kernel. TBB already keeps
+// the cores busy, so CHOLMOD and its BLAS run on the calling thread. CHOLMOD 3 asks for num_threads(4) in
+// its regions, which overrides omp_set_num_threads(1): a team of 4 was woken for every large supernode
+// (785k context switches in the 39k-tet fit of bench_fit, whose CPU time was 28 % kernel).
+// No active OpenMP level (max-active-levels 0) runs every region on the thread that meets it. The
+// setting is per thread, so every call sets it. Looked up at run time: any BLAS and an OpenMP-free
+// CHOLMOD need none of it.
 void keepCholmodOnThisThread() {
   using SetThreads = void (*)(int);
   static const bool blasSet = [] {
@@ -33,8 +37,8 @@ void keepCholmodOnThisThread() {
     return true;
   }();
   (void)blasSet;
-  static const SetThreads openMp = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
-  if (openMp) openMp(1);
+  static const SetThreads openMp = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  if (openMp) openMp(0);
 }
 
 // Columns per solve call. CHOLMOD's supernodal solve on thousands of columns at once streams the whole

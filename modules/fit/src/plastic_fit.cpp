@@ -25,6 +25,7 @@
 #include "vesalius/fem/static_equilibrium.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/reuse_freed_memory.h"
 
 #include <Eigen/Cholesky>
 
@@ -126,6 +127,8 @@ class Fitter {
   std::optional<FitIteration> iterate(const Stage& stage);
   void realign(Markers which);
   void recordErrors(FitIteration& record) const;
+  const char* stopReason(const Stage& stage, const std::vector<FitIteration>& history, double decrease,
+                         double stageStart) const;
   FitResult result(std::vector<FitIteration> history) const;
 
   const double scale_;  // c: the material space is the template's times c, s is Fp / c
@@ -155,6 +158,7 @@ Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd&
       surface_(templ.T), Lsc_(tetAdjacencyLaplacian(templ.T)), base_(Lsc_),
       springStiffness_(attachmentSpringStiffness(fem_, options.attachmentStiffness, markers.attachmentMaterial.rows())),
       x_(PlasticFem::flatten(x0)), s_(s0 / scale_), attached_(markers.attachmentMaterial.rows() > 0) {
+  reuseFreedMemory();  // every iteration allocates and frees Z and the Woodbury blocks, hundreds of MB each
   if (x0.rows() != templ.V.rows()) throw UsageError("fit: starting positions do not match the template");
   // Un-attached, the landmark stage's 3 rows per pair, less the 6 rigid motions the gauge takes, must fix
   // the 6 constant plastic strains that ½||L s||² leaves free.
@@ -216,12 +220,15 @@ struct Fitter::Linearization {
   std::vector<PointConstraint> active;
   std::unique_ptr<RigidGauge> gauge;
   std::unique_ptr<EquilibriumJacobian> J;
-  Eigen::MatrixXd Z;              // √c A J, in the stage's parameters; the attachments' rows first
+  // √c A J, in the stage's parameters; the attachments' rows first. Hundreds of MB: full-field stages
+  // hand it over to the Woodbury solver rather than keep a copy.
+  Eigen::MatrixXd Z;
   Eigen::VectorXd r;              // √c (A x + b), the same rows
   Eigen::VectorXd gradient;       // of the objective in the stage's parameters: L² s + Zᵀ r (projected)
   std::unique_ptr<WoodburySolver> woodbury;  // full-field stages
   double dampingScale = 1.0;      // ||Z||² / trace(D): μ = λ · this
   double f0 = 0.0;
+  const Eigen::MatrixXd& constraintJacobian() const { return woodbury ? woodbury->Z() : Z; }
 };
 
 Fitter::Linearization Fitter::linearize(const Stage& stage) {
@@ -250,7 +257,7 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
   }
   lin.dampingScale = std::max(lin.dampingScale, 1e-12);
   if (!stage.constantStrain)  // factored once, at the damping of its first direction
-    lin.woodbury = std::make_unique<WoodburySolver>(base_, lin.Z, damping_ * lin.dampingScale);
+    lin.woodbury = std::make_unique<WoodburySolver>(base_, std::move(lin.Z), damping_ * lin.dampingScale);
   lin.f0 = objective(stage.markers, s_, x_);
   return lin;
 }
@@ -295,7 +302,8 @@ double Fitter::longestStep(const Stage& stage, const Eigen::VectorXd& d) const {
 // The objective the linearization predicts at s + η d.
 double Fitter::model(const Stage& stage, const Linearization& lin, const Eigen::VectorXd& d, double eta) const {
   const Eigen::VectorXd ds = field(stage, d);
-  return 0.5 * (lin.r + eta * (lin.Z * d)).squaredNorm() + attachmentRows_.offset + smoothness(s_ + eta * ds);
+  return 0.5 * (lin.r + eta * (lin.constraintJacobian() * d)).squaredNorm() + attachmentRows_.offset +
+         smoothness(s_ + eta * ds);
 }
 
 // The first direction tried. ICP markers are re-projected onto the surface as it moves, so their linear
@@ -397,27 +405,53 @@ FitResult Fitter::run(Progress* progress) {
       {"icp", Markers::Icp, false, markers_.icp.rows() ? options_.icpIterations : 0},
   };
   std::vector<FitIteration> history;
+  std::vector<FitStageEnd> ends;
   x_ = equilibrium(s_, x_, nullptr);
   if (!attached_ && first != Markers::None) realign(first);
   for (const Stage& stage : stages) {
-    if (progress && stage.maxIterations > 0) progress->begin(std::string("fit: ") + stage.name);
-    const double stageStart = stage.maxIterations > 0 ? objective(stage.markers, s_, x_) : 0.0;
+    if (stage.maxIterations <= 0) continue;
+    if (progress) progress->begin(std::string("fit: ") + stage.name);
+    const double stageStart = objective(stage.markers, s_, x_);
     damping_ = kStartDamping;
     double previous = stageStart;
-    for (int k = 0; k < stage.maxIterations; ++k) {
+    FitStageEnd end{stage.name, 0, "iterations"};
+    for (int k = 0; k < stage.maxIterations && end.reason == "iterations"; ++k) {
       std::optional<FitIteration> record = iterate(stage);
-      if (!record) break;
+      if (!record) {
+        end.reason = "no_descent";
+        break;
+      }
       record->iteration = k;
       history.push_back(*record);
+      end.iterations = k + 1;
       if (progress) progress->update(double(k + 1) / stage.maxIterations);
-      if (record->step < options_.minStep) break;
-      if (previous - record->objective < options_.minDecrease * stageStart) break;
+      if (const char* reason = stopReason(stage, history, previous - record->objective, stageStart))
+        end.reason = reason;
       previous = record->objective;
-      if (stage.markers == Markers::Icp && !stage.constantStrain && record->maxIcpError < options_.maxIcpError) break;
     }
-    if (progress && stage.maxIterations > 0) progress->end();
+    ends.push_back(end);
+    if (progress) progress->end();
   }
-  return result(history);
+  FitResult out = result(history);
+  out.stageEnds = std::move(ends);
+  return out;
+}
+
+// The rule that ends the stage after the last iteration of `history`, or nothing. decrease: what that
+// iteration took off the objective, from stageStart at the stage's start.
+const char* Fitter::stopReason(const Stage& stage, const std::vector<FitIteration>& history, double decrease,
+                               double stageStart) const {
+  const FitIteration& last = history.back();
+  if (last.step < options_.minStep) return "step";
+  if (decrease < options_.minDecrease * stageStart) return "objective";
+  if (stage.markers != Markers::Icp || stage.constantStrain) return nullptr;
+  if (last.maxIcpError < options_.maxIcpError) return "max_icp_error";
+  const int window = options_.icpGainIterations;
+  if (window <= 0 || last.iteration < window) return nullptr;
+  const double before = history[history.size() - 1 - std::size_t(window)].meanIcpError;
+  const double gain = before - last.meanIcpError;
+  if (gain < options_.minIcpGain * before || gain < options_.minIcpGainMm) return "icp_gain";
+  return nullptr;
 }
 
 FitResult Fitter::result(std::vector<FitIteration> history) const {

@@ -41,6 +41,8 @@ class WoodburySolver {
   Eigen::MatrixXd solveUnrefined(const Eigen::MatrixXd& h) const { return solveOnce(h); }
   // The refinement of solve() from an approximation y of H⁻¹h.
   Eigen::MatrixXd refine(const Eigen::MatrixXd& h, Eigen::MatrixXd y) const;
+  // Z as given (#C by 6#T), for callers that handed theirs over.
+  const Eigen::MatrixXd& Z() const { return Z_; }
 
  private:
   static constexpr int kRefinements = 3;
