@@ -1,8 +1,11 @@
 // vesalius rig: the posing rig of a body (seed 001 §3.1-3.5 preprocessing): a tet mesh of the inside of
 // the skin with bone regions, bone weights, centres of rotation, and the meshes it will carry. Either from a
-// skin and a skeleton (bones: capsules around its segments), or from a label map with segmented bones
-// (skeleton and bone regions from the labels, skeleton_from_bones.h).
+// skin and a skeleton (bones: capsules around its segments), from a label map with segmented bones
+// (skeleton and bone regions from the labels, skeleton_from_bones.h), or from a reference anatomy with
+// OpenSim's bone meshes placed in its skin (skeleton from the meshes, skeleton_from_bone_meshes.h; bone
+// regions from the meshes voxelized, bone_mesh_labels.h).
 #include "anatomy_rig.h"
+#include "bone_mesh_labels.h"
 #include "common.h"
 #include "label_regions.h"
 
@@ -11,6 +14,7 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
@@ -19,6 +23,7 @@
 #include "vesalius/posing/bone_vertices.h"
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/rotation_centers.h"
+#include "vesalius/posing/skeleton_from_bone_meshes.h"
 #include "vesalius/posing/skeleton_from_bones.h"
 #include "vesalius/segmentation/label_edit.h"
 #include "vesalius/segmentation/label_ops.h"
@@ -26,8 +31,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 namespace fs = std::filesystem;
 
@@ -35,9 +42,22 @@ namespace vesalius::cli {
 
 namespace {
 
+// skeletonFromBoneMeshes on a reference anatomy: `reference full-body` places each OpenSim body by its own
+// fit, and the pelvis's hip centres land about 3 cm medial of the femurs' (docs/methods/
+// skeleton-alignment.md), so the femoral heads stand off the acetabula: within the 6 mm that finds them
+// in the assembled model 3-6 vertices per head remain. Within 20 mm: 42 (left) and 14 (right) head
+// vertices, centres 1.0 and 1.4 mm from the placed femurs' origins (13-30 mm: all within 1.8 mm).
+posing::SkeletonFromBoneMeshesOptions referenceBoneOptions() {
+  posing::SkeletonFromBoneMeshesOptions options;
+  options.acetabulumDistance = 20.0;
+  return options;
+}
+
 struct RigOptions {
-  std::string skin, skeleton, baseMesh, out, space = "auto", labels, labelTable;
+  std::string skin, skeleton, baseMesh, out, space = "auto", labels, labelTable, reference;
   posing::SkeletonFromBonesOptions bones;
+  posing::SkeletonFromBoneMeshesOptions meshBones = referenceBoneOptions();
+  double acetabulumDistance = NAN;  // --acetabulum-distance if given, for bones or meshBones
   std::vector<std::string> tissues;
   double voxelSize = 4.0;
   double margin = 15.0;  // --labels: the map is cropped to the bones' box grown by this, mm
@@ -65,16 +85,17 @@ Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
   return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
 }
 
-// Seed 001 §3.2: the inside of the skin as a voxel image under the size cap, its surface (closed, free
-// of self-crossings, which TetGen needs and an artist's mesh need not be), then TetGen. The image is
-// opened by one voxel and reduced to its largest component first: parts a voxel or two thin (finger
-// tips, toes at coarse voxels) would otherwise give flat surface pieces TetGen cannot seed.
-TetMesh bodyTets(const TriMesh& skin, const RigOptions& o) {
+// The grid of the voxelized body: --voxel-size, grown if needed to stay under the seed's cap (§3.2).
+GridGeometry bodyGrid(const TriMesh& skin, const RigOptions& o) {
   meshing::CoveringGridOptions grid;
   grid.voxelSizeMm = o.voxelSize;
-  const GridGeometry geometry = meshing::coveringGrid({&skin}, grid);
-  const segmentation::Mask inside = segmentation::largestComponent(
-      segmentation::openMm(meshing::meshInsideMask(skin, geometry), geometry.spacing.maxCoeff()));
+  return meshing::coveringGrid({&skin}, grid);
+}
+
+// Seed 001 §3.2: the inside of the skin as a voxel image under the size cap (bone_mesh_labels.h), its
+// surface (closed, free of self-crossings, which TetGen needs and an artist's mesh need not be), then TetGen.
+TetMesh bodyTets(const TriMesh& skin, const RigOptions& o) {
+  const segmentation::Mask inside = skinInsideMask(skin, bodyGrid(skin, o), o.skin);
   meshing::TetrahedralizeOptions tet;
   tet.targetTets = o.targetTets;
   // The voxel surface has about a triangle per boundary voxel face, which TetGen would keep and refine
@@ -167,9 +188,9 @@ void runSkinRig(const RigOptions& o) {
 }
 
 // The smallest positive label that is no bone's: the rest of the body.
-Label bodyLabel(const posing::BoneSkeleton& bones) {
+Label bodyLabel(const std::vector<std::vector<Label>>& boneLabels) {
   std::vector<bool> taken(65536, false);
-  for (const auto& labels : bones.labels)
+  for (const auto& labels : boneLabels)
     for (Label l : labels) taken[l] = true;
   Label body = 1;
   while (taken[body]) ++body;
@@ -204,10 +225,14 @@ LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double
 // them. Each bone is first grown by a voxel into the tissue around it (not into other bones): plates a
 // voxel or two thick (the iliac wings at 4 mm) would otherwise be two sheets so close that TetGen's quality
 // refinement fills them and the body around them with tets (0.93M tets instead of 0.68M for 20k asked).
-std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const posing::BoneSkeleton& bones, Label body,
-                                                const RigOptions& o, Progress& progress) {
+// A map that labels the whole body (solidBody false: rig --reference) grows its bones into the body only
+// and keeps the body's shape; a CT's map labels organs and bones, so its body is every labelled voxel made
+// solid and its bones grow into the unlabelled soft tissue too.
+std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<std::vector<Label>>& boneLabels,
+                                                Label body, bool solidBody, const RigOptions& o,
+                                                const std::string& source, Progress& progress) {
   std::vector<Label> ids;
-  for (const auto& labels : bones.labels) ids.insert(ids.end(), labels.begin(), labels.end());
+  for (const auto& labels : boneLabels) ids.insert(ids.end(), labels.begin(), labels.end());
   std::vector<bool> isBone(65536, false);
   for (Label l : ids) isBone[l] = true;
   const Grid<Label> rest = box.labels;
@@ -215,14 +240,33 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const posing::Bone
     const segmentation::Mask grown =
         segmentation::dilateMm(segmentation::maskOf(rest, l), box.labels.geometry.spacing.maxCoeff());
     for (std::size_t v = 0; v < grown.values.size(); ++v)
-      if (grown.values[v] && !isBone[rest.values[v]]) box.labels.values[v] = l;
+      if (grown.values[v] && !isBone[rest.values[v]] && (solidBody || rest.values[v] != 0)) box.labels.values[v] = l;
   }
   LabelRegionOptions regions;
   regions.body = body;
-  regions.solidBody = true;
+  regions.solidBody = solidBody;
   regions.bodySurface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
   regions.labelSurface.targetFaces = int(std::max<long>(300, o.targetTets / 4 / long(ids.size())));
-  return labelRegionSurfaces(box, ids, regions, o.labels, &progress);
+  return labelRegionSurfaces(box, ids, regions, source, &progress);
+}
+
+// Seed 001 §3.2-3.3 from the nested region surfaces of the body and its bones: TetGen, each bone's region
+// the vertices of its tets (boneLabels: per joint of rig.skeleton, the labels of its bone), weights, centres.
+void rigOfRegions(AnatomyRig& rig, const std::vector<meshing::RegionSurface>& regions,
+                  const std::vector<std::vector<Label>>& boneLabels, const RigOptions& o, io::Report& report,
+                  Progress& progress) {
+  {
+    auto timer = report.time("tetrahedralize");
+    progress.begin("tetrahedralize", "TetGen");
+    meshing::TetrahedralizeOptions tet;
+    tet.targetTets = o.targetTets;
+    rig.tets = meshing::tetrahedralizeRegions(regions, tet);
+    progress.end();
+  }
+  Eigen::VectorXi bone =
+      posing::boneVerticesOfLabels(rig.tets.T, rig.tets.tetAttributes.integer.at(kLabel), boneLabels, rig.tets.V.rows());
+  rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
+  weighRig(rig, bone, o, report, progress);
 }
 
 void runLabelRig(const RigOptions& o) {
@@ -234,29 +278,20 @@ void runLabelRig(const RigOptions& o) {
   report.parameter("cor_centres", o.corCentres);
   Progress progress(o.common.progressStyle());
   const LabelMap map = io::readLabelMap(o.labels, o.labelTable);
-  const posing::BoneSkeleton bones = posing::skeletonFromBones(map, o.bones, o.labels);
-  const Label body = bodyLabel(bones);
+  posing::SkeletonFromBonesOptions boneOptions = o.bones;
+  if (!std::isnan(o.acetabulumDistance)) boneOptions.acetabulumDistance = o.acetabulumDistance;
+  const posing::BoneSkeleton bones = posing::skeletonFromBones(map, boneOptions, o.labels);
+  const Label body = bodyLabel(bones.labels);
   AnatomyRig rig;
   rig.skeleton = bones.skeleton;
   std::vector<meshing::RegionSurface> regions;
   {
     auto timer = report.time("surfaces");
     progress.begin("surfaces", "the body and its bones, nested");
-    regions = boneRegions(bonesBox(map, bones, o.margin, o.voxelSize), bones, body, o, progress);
+    regions = boneRegions(bonesBox(map, bones, o.margin, o.voxelSize), bones.labels, body, true, o, o.labels, progress);
     progress.end();
   }
-  {
-    auto timer = report.time("tetrahedralize");
-    progress.begin("tetrahedralize", "TetGen");
-    meshing::TetrahedralizeOptions tet;
-    tet.targetTets = o.targetTets;
-    rig.tets = meshing::tetrahedralizeRegions(regions, tet);
-    progress.end();
-  }
-  Eigen::VectorXi bone = posing::boneVerticesOfLabels(rig.tets.T, rig.tets.tetAttributes.integer.at(kLabel),
-                                                     bones.labels, rig.tets.V.rows());
-  rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
-  weighRig(rig, bone, o, report, progress);
+  rigOfRegions(rig, regions, bones.labels, o, report, progress);
   std::vector<std::pair<std::string, TriMesh>> meshes;
   for (meshing::RegionSurface& r : regions) {
     const LabelEntry* entry = map.table.find(Label(r.label));
@@ -268,11 +303,75 @@ void runLabelRig(const RigOptions& o) {
   finishRig(o, rig, meshes, report);
 }
 
+// The OpenSim bodies that have no joint in skeletonFromBoneMeshes but move rigidly with one: the foot
+// (calcaneus, toes) with the talus, as there are no subtalar and toe joints. Other bodies are their joint.
+std::string jointOfBody(const std::string& body) {
+  for (const char* foot : {"calcn_", "toes_"})
+    if (body.rfind(foot, 0) == 0) return "talus_" + body.substr(std::strlen(foot));
+  return body;
+}
+
+// Seed 001 §3.2 for a reference anatomy: its skin and, per joint, the bone meshes of the joint's OpenSim
+// body (the tissues' group, jointOfBody) voxelized into one label map (bone_mesh_labels.h: label j + 1
+// for joint j), then nested region surfaces as for --labels. boneLabels: per joint its label, none for a
+// joint with no bone voxel (the spine, arms and head of a lower-body skeleton have no joint at all).
+std::vector<meshing::RegionSurface> referenceRegions(const ReferenceAnatomy& reference, const Skeleton& skeleton,
+                                                     std::vector<std::vector<Label>>& boneLabels, const RigOptions& o,
+                                                     Progress& progress) {
+  std::vector<BoneMeshes> bones(skeleton.joints.size());
+  for (std::size_t j = 0; j < bones.size(); ++j) bones[j].name = skeleton.joints[j].name;
+  for (const ReferenceTissue& t : reference.tissues) {
+    const int j = skeleton.find(jointOfBody(t.group));
+    if (j >= 0) bones[std::size_t(j)].meshes.push_back(&t.mesh);
+  }
+  const LabelMap map = boneMeshLabelMap(reference.skin, bones, bodyGrid(reference.skin, o), o.reference);
+  std::vector<long> voxels(bones.size() + 2, 0);
+  for (Label l : map.labels.values) ++voxels[l];
+  boneLabels.assign(bones.size(), {});
+  for (std::size_t j = 0; j < bones.size(); ++j)
+    if (voxels[j + 1] > 0) boneLabels[j] = {Label(j + 1)};
+  return boneRegions(map, boneLabels, Label(bones.size() + 1), false, o, o.reference, progress);
+}
+
+void runReferenceRig(const RigOptions& o) {
+  io::Report report("rig");
+  report.input("reference", o.reference);
+  report.parameter("voxel_size_mm", o.voxelSize);
+  report.parameter("target_tets", o.targetTets);
+  report.parameter("cor_centres", o.corCentres);
+  Progress progress(o.common.progressStyle());
+  const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
+  std::map<std::string, TriMesh> byName;
+  for (const ReferenceTissue& t : reference.tissues) byName.emplace(t.name, t.mesh);
+  posing::SkeletonFromBoneMeshesOptions boneOptions = o.meshBones;
+  if (!std::isnan(o.acetabulumDistance)) boneOptions.acetabulumDistance = o.acetabulumDistance;
+  const posing::MeshSkeleton bones = posing::skeletonFromBoneMeshes(byName, boneOptions, o.reference);
+  AnatomyRig rig;
+  rig.skeleton = bones.skeleton;
+  std::vector<std::vector<Label>> boneLabels;
+  std::vector<meshing::RegionSurface> regions;
+  {
+    auto timer = report.time("surfaces");
+    progress.begin("surfaces", "skin and bone meshes voxelized; the body and its bones, nested");
+    regions = referenceRegions(reference, rig.skeleton, boneLabels, o, progress);
+    progress.end();
+  }
+  rigOfRegions(rig, regions, boneLabels, o, report, progress);
+  std::vector<std::pair<std::string, TriMesh>> meshes{{"skin.obj", reference.skin}};
+  for (const ReferenceTissue& t : reference.tissues) meshes.emplace_back(t.name + ".obj", t.mesh);
+  for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), io::readTriMesh(t));
+  report.metric("femoral_head_radius_left_mm", bones.left.femoralHead.radius);
+  report.metric("femoral_head_radius_right_mm", bones.right.femoralHead.radius);
+  finishRig(o, rig, meshes, report);
+}
+
 void runRig(const RigOptions& o) {
   const bool fromSkin = !o.skin.empty() || !o.skeleton.empty();
-  if (fromSkin == !o.labels.empty()) throw UsageError("rig: give --skin and --skeleton, or --labels (not both)");
+  if (int(fromSkin) + int(!o.labels.empty()) + int(!o.reference.empty()) != 1)
+    throw UsageError("rig: give --skin and --skeleton, or --labels, or --reference (one of them)");
   if (fromSkin && (o.skin.empty() || o.skeleton.empty())) throw UsageError("rig: --skin and --skeleton go together");
-  if (!fromSkin && !o.labelTable.empty() && o.labels.empty()) throw UsageError("rig: --label-table needs --labels");
+  if (!o.labelTable.empty() && o.labels.empty()) throw UsageError("rig: --label-table needs --labels");
+  if (!o.reference.empty()) return runReferenceRig(o);
   fromSkin ? runSkinRig(o) : runLabelRig(o);
 }
 
@@ -287,9 +386,13 @@ void addRigCommand(CLI::App& app) {
                   "Instead of --skin/--skeleton: a label map with segmented bones (hip_left, hip_right, sacrum, "
                   "femur_left, femur_right, vertebrae_L5 upward); skeleton and bone regions from its labels");
   cmd->add_option("--label-table", o->labelTable, "Label table for --labels (default: the one beside it)");
-  cmd->add_option("--acetabulum-distance", o->bones.acetabulumDistance,
-                  "With --labels: femoral head voxels within this of the hip bone give the hip centre, mm")
-      ->capture_default_str();
+  cmd->add_option("--reference", o->reference,
+                  "Instead of --skin/--skeleton or --labels: a reference anatomy with OpenSim's bone meshes in its "
+                  "skin (`reference full-body`); skeleton (pelvis, legs) and bone regions from the meshes");
+  cmd->add_option("--acetabulum-distance", o->acetabulumDistance,
+                  "With --labels or --reference: femoral head voxels or vertices within this of the hip bone give the "
+                  "hip centre, mm (default 6 with --labels, 20 with --reference)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--base-mesh", o->baseMesh, "MakeHuman base.obj for a .mhskel (default: beside it)");
   cmd->add_option("--tissue", o->tissues, "A mesh to carry along (organ, bone, muscle), repeatable");
   cmd->add_option("--space", o->space,
@@ -299,7 +402,7 @@ void addRigCommand(CLI::App& app) {
   cmd->add_option("--margin", o->margin, "With --labels: mesh the bones' bounding box grown by this, mm")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the inside image (--skin) or of the labels meshed (--labels; coarser only), mm (grown to keep it under "
+  cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the inside image (--skin, --reference) or of the labels meshed (--labels; coarser only), mm (grown to keep it under "
                                                "250x120x700 voxels, seed 001 §3.2)")
       ->capture_default_str();
   cmd->add_option("--target-tets", o->targetTets, "About this many tets")->capture_default_str();
@@ -319,7 +422,9 @@ void addRigCommand(CLI::App& app) {
       "--skeleton testdata/body/default.mhskel --out body-rig\n"
       "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.\n"
       "From a CT's bone labels (TotalSegmentator names; the pelvis, femurs and lumbar spine):\n"
-      "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig");
+      "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
+      "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
+      "  vesalius rig --reference body-reference --out body-bones-rig");
   cmd->callback([o] { runRig(*o); });
 }
 

@@ -4,6 +4,7 @@
 // the pelvis's left-right axis made orthogonal to the femur, no inverted tets, bone vertices of weight 1 on
 // their bone. A map
 // without a femur is refused in one line.
+#include "rig_frames.h"
 #include "run_command.h"
 #include "test_data.h"
 
@@ -21,9 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 namespace vesalius::test {
 namespace {
@@ -62,30 +61,13 @@ double rigidDice(const LabelMap& rest, const LabelMap& posed, Label id, const Ei
   return 2.0 * double(both) / double(inMoved + inPosed);
 }
 
-// frames.txt (anatomy_rig.h): per joint name, its rest world rotation row by row.
-std::map<std::string, Eigen::Matrix3d> readFrames(const std::string& path) {
-  std::map<std::string, Eigen::Matrix3d> frames;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string name;
-    Eigen::Matrix3d R;
-    fields >> name;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) fields >> R(r, c);
-    if (fields) frames[name] = R;
-  }
-  return frames;
-}
-
 double angleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
 
 // The rig's own checks: femur frames, tets, bone weights.
 void checkRig(const std::string& rig) {
-  const auto frames = readFrames(rig + "/frames.txt");
+  const auto frames = readRigFrames(rig + "/frames.txt");
   ASSERT_EQ(frames.count("pelvis"), 1u) << rig << "/frames.txt";
   for (const std::string femur : {"femur_left", "femur_right"}) {
     ASSERT_EQ(frames.count(femur), 1u) << femur;

@@ -4,12 +4,9 @@
 #include "well_composed.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/label_map.h"
-#include "vesalius/core/mesh_measures.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "vesalius/meshing/winding_mask.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -37,25 +34,12 @@ GridGeometry windingGrid(const TriMesh& mesh, int resolution) {
   return coveringGrid({&mesh}, grid);
 }
 
-// Label 1 where the winding number (signed so that the mesh's enclosed volume is positive) is >= 1/2;
-// the grid's outer layer stays 0 as makeWellComposed requires.
+// Label 1 where the winding number is >= 1/2 (winding_mask.h); the grid's outer layer, two voxels beyond
+// the mesh's bounding box, stays 0 as makeWellComposed requires.
 Grid<Label> insideVoxels(const TriMesh& mesh, const GridGeometry& g, const WindingNumberOptions& options) {
-  MatrixX3d centres(g.voxelCount(), 3);
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.size.z()), [&](const tbb::blocked_range<int>& slices) {
-    for (int k = slices.begin(); k < slices.end(); ++k)
-      for (int j = 0; j < g.size.y(); ++j)
-        for (int i = 0; i < g.size.x(); ++i)
-          centres.row(g.linearIndex(i, j, k)) = g.indexToWorld(Eigen::Vector3d(i, j, k)).transpose();
-  });
-  const Eigen::VectorXd w = windingNumbers(mesh.V, mesh.F, centres, options);
-  const double sign = enclosedVolume(mesh.V, mesh.F) < 0 ? -1.0 : 1.0;
+  const Grid<std::uint8_t> mask = windingNumberMask(mesh, g, options);
   Grid<Label> inside(g, 0);
-  for (int k = 1; k + 1 < g.size.z(); ++k)
-    for (int j = 1; j + 1 < g.size.y(); ++j)
-      for (int i = 1; i + 1 < g.size.x(); ++i) {
-        const std::int64_t n = g.linearIndex(i, j, k);
-        inside.values[std::size_t(n)] = sign * w[n] >= 0.5;
-      }
+  std::copy(mask.values.begin(), mask.values.end(), inside.values.begin());
   return inside;
 }
 
