@@ -18,6 +18,7 @@
 #include "vesalius/transfer/skin_registration.h"
 #include "vesalius/viz/surface_render.h"
 
+#include <chrono>
 #include <filesystem>
 #include <limits>
 #include <iomanip>
@@ -30,7 +31,7 @@ namespace vesalius::cli {
 namespace {
 
 struct TransferOptions {
-  std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts;
+  std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts, laplaceSolver = "mg";
   double voxelSize = 3;
   int registrationIterations = transfer::SkinRegistrationOptions{}.iterations;
   CommonOptions common;
@@ -193,9 +194,16 @@ void runTransfer(const TransferOptions& o) {
   report.parameter("fat", o.fatAmounts.empty() ? o.fat : o.fatAmounts);
   report.parameter("voxel_size_mm", o.voxelSize);
   report.parameter("registration_iterations", o.registrationIterations);
+  report.parameter("laplace_solver", o.laplaceSolver);
   Progress progress(o.common.progressStyle());
+  auto start = std::chrono::steady_clock::now();
+  const auto endStage = [&](const std::string& name) {
+    report.stage(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    start = std::chrono::steady_clock::now();
+  };
   const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
   const TriMesh target = readTarget(o);
+  endStage("reading");
   // The fat first, so that a bad file fails before the registration's work. --fat-amounts takes `fat
   // edit`'s defaults: 15 mm voxels, 50 mm per unit amount, 0 for the bones it does not name.
   std::string fatKind = "bone amounts";
@@ -207,10 +215,10 @@ void runTransfer(const TransferOptions& o) {
   transfer::SkinRegistrationOptions registrationOptions;
   registrationOptions.iterations = o.registrationIterations;
   progress.begin("register", "skin registration (ICP with shape matching)");
-  const auto startRegister = std::chrono::steady_clock::now();
+  start = std::chrono::steady_clock::now();
   const transfer::SkinRegistration registered =
       transfer::registerSkin(reference.skin.V, reference.skin.F, target.V, target.F, registrationOptions);
-  report.stage("skin registration", std::chrono::duration<double>(std::chrono::steady_clock::now() - startRegister).count());
+  endStage("skin registration");
   progress.end();
   report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
   report.metric("registration_max_distance_mm", registered.finalMaxDistance);
@@ -241,14 +249,24 @@ void runTransfer(const TransferOptions& o) {
   report.metric("registration_scale", registered.alignment.scale);
 
   progress.begin("transfer", "interpolation, bone registration, final interpolation");
+  start = std::chrono::steady_clock::now();
   const GridGeometry grid = fieldGrid(reference, o.voxelSize);
   const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, grid);
-  const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside);
+  endStage("inside mask");
+  transfer::AnatomyTransferOptions transferOptions;
+  transferOptions.field.laplace.solver =
+      o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
+  const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside, transferOptions);
   progress.end();
   report.stage("skin field", result.secondsSkinField);
   report.stage("bone registration", result.secondsBones);
   report.stage("final field", result.secondsFinalField);
+  start = std::chrono::steady_clock::now();
   report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
+  const auto iterations = [](const transfer::DisplacementField& f) {
+    return nlohmann::json{f.solves[0].iterations, f.solves[1].iterations, f.solves[2].iterations};
+  };
+  report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
   const transfer::JacobianSummary jacobian = transfer::jacobianDeterminant(result.finalField);
   report.metric("jacobian_min", jacobian.minimum);
   report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
@@ -259,6 +277,7 @@ void runTransfer(const TransferOptions& o) {
   body.V = registered.V;
   reportInside(body, reference, result, o.voxelSize, report);
   reportBones(reference, result, report);
+  endStage("checks");
 
   const ReferenceAnatomy out = transferredAnatomy(reference, result, registered.V);
   // The sub-fat surface (the seed's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
@@ -276,6 +295,7 @@ void runTransfer(const TransferOptions& o) {
     report.output("png", o.png);
     report.output("png_reference", referencePng);
   }
+  endStage("writing");
   std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
             << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
             << result.boneGroups.size() << " bone groups, Jacobian min " << jacobian.minimum << ", "
@@ -302,6 +322,11 @@ void addTransferCommand(CLI::App& app) {
                   "with that command's defaults")
       ->excludes(fatOption);
   cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the displacement field's grid, mm")->capture_default_str();
+  cmd->add_option("--laplace-solver", o->laplaceSolver,
+                  "Solver of the two Laplace fields: mg (multigrid-preconditioned CG) or cg (Jacobi-preconditioned "
+                  "CG, the seed's baseline, for benchmarks); both stop at the same relative residual")
+      ->check(CLI::IsMember({"mg", "cg"}))
+      ->capture_default_str();
   cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
       ->capture_default_str();
   cmd->add_option("--png", o->png,

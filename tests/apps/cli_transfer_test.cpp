@@ -4,14 +4,12 @@
 // (R5, R6), the same bones under extra fat (R3), long bones straight (R1), the trunk symmetric (R2), a
 // field that folds nowhere.
 #include "run_command.h"
+#include "test_ct_bodies.h"
 
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
-#include "vesalius/meshing/label_surface.h"
-#include "vesalius/segmentation/ct_tissues.h"
-#include "vesalius/segmentation/label_ops.h"
 
 #include <nlohmann/json.hpp>
 
@@ -46,20 +44,9 @@ std::string buildReference(const std::string& dir) {
   return out;
 }
 
-// The body of the test CT surfaced after `dilateMm` of extra tissue, on a grid whose spacing is scaled
-// by `stretch` (a wider or flatter person), centred where the original body was.
+// The body of the test CT surfaced after `dilateMm` of extra tissue, its spacing scaled by `stretch`.
 std::string bodySurface(const std::string& dir, double dilateMm, const Eigen::Vector3d& stretch) {
-  const Image ct = io::readScan(kCt + "example_ct.nii.gz");
-  segmentation::Mask body = segmentation::segmentCtBody(ct, {});
-  if (dilateMm > 0) body = segmentation::dilateMm(body, dilateMm);
-  const Eigen::Vector3d centre = body.geometry.indexToWorld(0.5 * (body.geometry.size.cast<double>() - Eigen::Vector3d::Ones()));
-  body.geometry.spacing = body.geometry.spacing.cwiseProduct(stretch);
-  body.geometry.origin += centre - body.geometry.indexToWorld(0.5 * (body.geometry.size.cast<double>() - Eigen::Vector3d::Ones()));
-  meshing::SurfaceOptions surface;
-  surface.targetFaces = 16000;  // a mesh unlike the reference skin's 20000 faces
-  const std::string path = dir + "/target.obj";
-  io::writeTriMesh(path, meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, surface));
-  return path;
+  return ctBodySurface(kCt + "example_ct.nii.gz", dir, dilateMm, stretch);
 }
 
 // `fat`: as `--fat` takes it, a thickness in mm or a file.
@@ -143,11 +130,7 @@ TEST(CliTransfer, ExtraFatKeepsTheBones) {
   fs::create_directories(dir + "/fat");
   transfer(reference, bodySurface(dir + "/lean", 0.0, Eigen::Vector3d::Ones()), dir + "/lean/out", "0");
   const std::string target = bodySurface(dir + "/fat", 8.0, Eigen::Vector3d::Ones());
-  const TriMesh t = io::readTriMesh(target);
-  const TriangleTree targetTree(t.V, t.F);
-  std::ofstream fat(dir + "/fat.txt");
-  for (const ClosestPoint& c : targetTree.closest(a.skin.V)) fat << std::sqrt(c.squaredDistance) << "\n";
-  fat.close();
+  writeFatLayer(a.skin, target, dir + "/fat.txt");
   const nlohmann::json report = transfer(reference, target, dir + "/fat/out", dir + "/fat.txt");
   const ReferenceAnatomy lean = io::readReferenceAnatomy(dir + "/lean/out"), fatter = io::readReferenceAnatomy(dir + "/fat/out");
   // The eroded fat body should be the lean body's skin again.

@@ -1,5 +1,5 @@
-// What the benchmark drivers share: wall time of a piece of work, and running a workload in a child
-// process so that its peak resident memory is its own.
+// What the benchmark drivers share: wall time of a piece of work, running a workload in a child process
+// so that its peak resident memory is its own, and timing a program run as a user would run it.
 #pragma once
 
 #include <sys/resource.h>
@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace vesalius::bench {
 
@@ -35,6 +37,54 @@ inline void inChild(void (*work)()) {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) std::exit(1);
   std::printf(" %.0f MB |\n", double(usage.ru_maxrss) / 1024.0);  // kilobytes on Linux
   std::fflush(stdout);
+}
+
+// The 1-minute load average (0 if unreadable): printed beside timings on the shared machine.
+inline double loadAverage() {
+  double load = 0;
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &load) != 1) load = 0;
+    std::fclose(f);
+  }
+  return load;
+}
+
+struct ProgramRun {
+  int exitCode = -1;
+  double wall = 0, cpu = 0;  // s; CPU is user + system of the program and all its threads
+  double peakMb = 0;
+};
+
+// Runs `program` with `args` (no shell), its standard output and error appended to `logPath`; waits for it.
+inline ProgramRun runProgram(const std::string& program, const std::vector<std::string>& args, const std::string& logPath) {
+  std::vector<char*> argv{const_cast<char*>(program.c_str())};  // built before fork: the child only execs
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  std::FILE* log = std::fopen(logPath.c_str(), "a");
+  if (!log) return {};
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    std::fclose(log);
+    return {};
+  }
+  if (pid == 0) {
+    dup2(fileno(log), 1);
+    dup2(fileno(log), 2);
+    execv(program.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  std::fclose(log);
+  ProgramRun run;
+  run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  run.cpu = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  run.peakMb = double(usage.ru_maxrss) / 1024.0;
+  return run;
 }
 
 }  // namespace vesalius::bench

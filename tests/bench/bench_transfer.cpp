@@ -65,15 +65,6 @@ double cpuSeconds() {
   return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-double loadAverage() {
-  double load = 0;
-  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &load) != 1) load = 0;
-    std::fclose(f);
-  }
-  return load;
-}
-
 struct Run {
   double setup = 0, solve = 0, cpu = 0;  // wall s, wall s, CPU s of both
   std::array<LaplaceSolveInfo, 3> info;
@@ -105,7 +96,7 @@ double meanFactor(const LaplaceSolveInfo& info) {
 }
 
 void oneGrid() {
-  const double loadBefore = loadAverage();
+  const double loadBefore = bench::loadAverage();
   GridGeometry g;
   g.size = gSize;
   g.spacing = Eigen::Vector3d(1, 1, 1.5);
@@ -125,7 +116,7 @@ void oneGrid() {
               three.info[0].iterations, three.info[1].iterations, three.info[2].iterations, mg.setup + mg.solve,
               mg.info[0].iterations, meanFactor(mg.info[0]), cg.solve, cg.cpu, cg.info[0].iterations,
               cg.solve / oneTotal, 3 * cg.solve / threeTotal, cg.solve / (mg.setup + mg.solve), loadBefore,
-              loadAverage());
+              bench::loadAverage());
 }
 
 }  // namespace
