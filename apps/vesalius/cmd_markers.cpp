@@ -438,7 +438,8 @@ void addSuggest(CLI::App& markers) {
   cmd->add_option("--polarity", o->polarity, "Intensity change from inside to outside the organ at its edge")
       ->check(CLI::IsMember({"auto", "falling", "rising", "either"}))->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed of the candidate points")->capture_default_str();
-  cmd->add_option("--placed-out", o->placedOut, "Also write the placed template surface (an overlay for the picker)");
+  cmd->add_option("--placed-out", o->placedOut,
+                  "Also write the template surface as placed and bent onto the edges (an overlay for the picker)");
   addCommonOptions(*cmd, o->common);
   cmd->footer(
       "Example:\n  vesalius markers suggest --scan ct.nii.gz --template liver.obj --labels seg.nii.gz "

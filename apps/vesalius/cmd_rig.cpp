@@ -424,7 +424,8 @@ void addRigCommand(CLI::App& app) {
       "From a CT's bone labels (TotalSegmentator names; the pelvis, femurs and lumbar spine):\n"
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
-      "  vesalius rig --reference body-reference --out body-bones-rig");
+      "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
+      "(about 2 minutes; at the defaults TetGen refines around the bones to about 2M tets, 25 minutes)");
   cmd->callback([o] { runRig(*o); });
 }
 
