@@ -509,9 +509,13 @@ TEST(CliFatErode, BadThicknessAndMissingUvAreOneLineErrors) {
 
 // The full-body reference (MakeHuman's neutral skin, Rajagopal's OpenSim bones placed by seed 004) with
 // MakeHuman's uv atlas on its skin: base.obj's "body" group holds the shapes' quads in the same order.
+// Built once per test process, in folders named after the test that builds it: ctest runs each test in
+// its own process, two at a time, and two processes writing one folder read each other's half-written files.
 const std::string& fullBodyReference() {
   static const std::string path = [] {
-    const std::string body = std::string(VESALIUS_TESTDATA) + "/body/", plain = outputDir() + "/full_body_plain";
+    const std::string dir = outputDir() + "/" + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::create_directories(dir);
+    const std::string body = std::string(VESALIUS_TESTDATA) + "/body/", plain = dir + "/full_body_plain";
     const CommandResult r = runVesalius({"reference", "full-body", "--skin", body + "shapes/mh_neutral_body.obj",
                                          "--skeleton", body + "default.mhskel", "--model",
                                          std::string(VESALIUS_TESTDATA) + "/skeleton-opensim/Rajagopal2016.osim",
@@ -526,7 +530,7 @@ const std::string& fullBodyReference() {
     for (Eigen::Index b = 0; b < base.F.rows(); ++b)
       if (group(b, 0) == 0 && f < reference.skin.F.rows()) reference.skin.FUV.row(f++) = base.FUV.row(b);
     EXPECT_EQ(f, reference.skin.F.rows());
-    const std::string p = outputDir() + "/full_body";
+    const std::string p = dir + "/full_body";
     io::writeReferenceAnatomy(p, reference, WriteOptions{true});
     return p;
   }();
