@@ -39,6 +39,13 @@ std::string freshDir(const std::string& name) {
   return d.string();
 }
 
+// The full-body reference (MakeHuman's neutral skin with Rajagopal's bones placed in it) written to `out`.
+CommandResult makeFullBodyReference(const std::string& out) {
+  return runVesalius({"reference", "full-body", "--skin", kData + "/body/shapes/mh_neutral_body.obj", "--skeleton",
+                      kData + "/body/default.mhskel", "--model", kData + "/skeleton-opensim/Rajagopal2016.osim",
+                      "--out", out, "--progress", "none"});
+}
+
 // The hip centre of a placed femur: the placement moved OpenSim's mesh (femur frame, metres, its origin
 // the hip centre) by an affine map (a similarity and the axis change), found here from the vertex pairs.
 Eigen::Vector3d placedOrigin(const std::string& openSimMesh, const TriMesh& placed) {
@@ -96,10 +103,7 @@ void checkJoints(const std::string& rig, const ReferenceAnatomy& reference) {
 
 TEST(CliRigReference, OpenSimBonesInTheMakeHumanSkinRigAndTheLeftHipFlexes) {
   const std::string dir = freshDir("body");
-  CommandResult r = runVesalius({"reference", "full-body", "--skin", kData + "/body/shapes/mh_neutral_body.obj",
-                                 "--skeleton", kData + "/body/default.mhskel", "--model",
-                                 kData + "/skeleton-opensim/Rajagopal2016.osim", "--out", dir + "/reference",
-                                 "--progress", "none"});
+  CommandResult r = makeFullBodyReference(dir + "/reference");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string rig = dir + "/rig";
   // Coarse, to keep the test short: 8 mm voxels, about 280k tets (TetGen refines far past the target
@@ -141,10 +145,7 @@ TEST(CliRigReference, OpenSimBonesInTheMakeHumanSkinRigAndTheLeftHipFlexes) {
 // one line naming the folder and the mesh, before any voxel is made.
 TEST(CliRigReference, AReferenceWithoutALegBoneIsRefusedInOneLineNamingIt) {
   const std::string dir = freshDir("no-fibula");
-  CommandResult r = runVesalius({"reference", "full-body", "--skin", kData + "/body/shapes/mh_neutral_body.obj",
-                                 "--skeleton", kData + "/body/default.mhskel", "--model",
-                                 kData + "/skeleton-opensim/Rajagopal2016.osim", "--out", dir + "/full",
-                                 "--progress", "none"});
+  CommandResult r = makeFullBodyReference(dir + "/full");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   ReferenceAnatomy reference = io::readReferenceAnatomy(dir + "/full");
   auto& tissues = reference.tissues;
