@@ -16,7 +16,9 @@ BodyCorrespondence pairs(std::string body, std::vector<std::string> model, std::
 }
 
 void addSide(SkeletonCorrespondence& c, const std::string& s, const std::string& S) {
-  c.bodies.push_back(pairs("femur_" + s, {"femur_" + s, "tibia_" + s}, {"upperleg01." + S, "lowerleg01." + S}));
+  // The hip on the placed pelvis's hip centre, not MakeHuman's (31.6 mm lateral of it): the femoral head
+  // in its acetabulum.
+  c.bodies.push_back(pairs("femur_" + s, {"femur_" + s, "tibia_" + s}, {kParentPlaced, "lowerleg01." + S}));
   c.bodies.push_back(pairs("tibia_" + s, {"tibia_" + s, "talus_" + s}, {"lowerleg01." + S, "foot." + S}));
   c.bodies.push_back(pairs("patella_" + s, {}, {}));
   for (const char* foot : {"talus_", "calcn_"})
@@ -47,7 +49,13 @@ struct PointLookup {
     }
     throw BadInput("", "skeleton placement: no body or landmark '" + name + "' in the model");
   }
-  Eigen::Vector3d target(const std::string& name) const {
+  // The skin point `name`, or for kParentPlaced the model point x as `parent` (this pass's) placed it.
+  Eigen::Vector3d target(const std::string& name, const Eigen::Vector3d& x, const fit::SimilarityTransform* parent,
+                         const std::string& body) const {
+    if (name == kParentPlaced) {
+      if (!parent) throw BadInput("", "skeleton placement: root body '" + body + "' has no parent joint to target");
+      return parent->apply(x);
+    }
     auto it = targets.find(name);
     if (it == targets.end()) throw BadInput("", "skeleton placement: no target point '" + name + "'");
     return it->second;
@@ -149,19 +157,20 @@ SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorresponde
     for (std::size_t b = 0; b < model.joints.size(); ++b) {
       const BodyCorrespondence* c = byBody[b];
       const std::size_t n = c ? c->modelPoints.size() : 0;
+      const int parent = model.joints[b].parent;
+      const fit::SimilarityTransform* placedParent = parent >= 0 ? &next.bodies[std::size_t(parent)] : nullptr;
       MatrixX3d from(n, 3), to(n, 3);
       for (std::size_t i = 0; i < n; ++i) {
-        from.row(Eigen::Index(i)) = lookup.modelPoint(c->modelPoints[i]).transpose();
-        to.row(Eigen::Index(i)) = lookup.target(c->targetPoints[i]).transpose();
+        const Eigen::Vector3d x = lookup.modelPoint(c->modelPoints[i]);
+        from.row(Eigen::Index(i)) = x.transpose();
+        to.row(Eigen::Index(i)) = lookup.target(c->targetPoints[i], x, placedParent, model.joints[b].name).transpose();
       }
       double scale = 0;  // 0: the pairs' own
       if (pass == 1 && !c->scaleFrom.empty()) {
         for (const std::string& other : c->scaleFrom) scale += out.bodies[std::size_t(model.find(other))].scale;
         scale /= double(c->scaleFrom.size());
       }
-      const int parent = model.joints[b].parent;
-      next.bodies.push_back(fitBody(from, to, parent >= 0 ? &next.bodies[std::size_t(parent)] : nullptr, skinAxes,
-                                    model.joints[b].name, scale));
+      next.bodies.push_back(fitBody(from, to, placedParent, skinAxes, model.joints[b].name, scale));
       next.rmsResidual.push_back(n ? std::sqrt((next.bodies.back().apply(from) - to).rowwise().squaredNorm().mean())
                                    : 0.0);
     }

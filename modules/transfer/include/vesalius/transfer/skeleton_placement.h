@@ -9,7 +9,10 @@
 //  - 1 pair (toes): the parent's scale and rotation, translated so the joint lands exactly;
 //  - no pair (patella: MakeHuman has no joint for it): the parent's transform.
 // Bodies with `scaleFrom` (BodyCorrespondence) are refitted in a second pass with the scales of the
-// first; their one- and no-pair children follow.
+// first; their one- and no-pair children follow. A target may be the parent's placed joint
+// (kParentPlaced) instead of a skin point: the body then meets its placed parent at that joint (a chain),
+// where the parent's own fit does not land on the skin's joint (the femoral heads in the acetabula of a
+// pelvis scaled by `scaleFrom`).
 // This is not seed 004's joint-by-joint refinement of a rig (its §3.2 onwards moves joints inside the
 // skin); here the skin's rig is taken as given and the model's bones follow it.
 //
@@ -39,10 +42,14 @@ struct ModelLandmark {
 };
 
 // One body's point pairs: modelPoints[i] (a body name = its origin, or a landmark name) goes to
-// targetPoints[i] (a name in the target map). Both lists have the same length, 0 to many.
+// targetPoints[i] (a name in the target map, or kParentPlaced). Both lists have the same length, 0 to many.
 // scaleFrom, if not empty, names bodies whose mean scale replaces the one the pairs give (for a body
 // whose target joints are not anatomically spaced, e.g. MakeHuman's hips, 221 mm apart against
 // Rajagopal's 155 mm); the pairs still give its rotation, and their centroids coincide.
+// The target name for "the model point as the body's parent placed it" (a joint shared with the parent):
+// no skin rig names a joint so. Only for a body with a parent; the parent's placement of the same pass.
+inline const std::string kParentPlaced = "@parent";
+
 struct BodyCorrespondence {
   std::string body;
   std::vector<std::string> modelPoints;
@@ -56,7 +63,8 @@ struct SkeletonCorrespondence {
 };
 
 // Rajagopal 2016 (testdata/skeleton-opensim) onto MakeHuman's default.mhskel: targets are MakeHuman bone
-// names (the bone's head joint) and "head-spine" (body_frame.h). The table itself is in
+// names (the bone's head joint), "head-spine" (body_frame.h) and, for the femurs' hip centres, the placed
+// pelvis's (kParentPlaced: MakeHuman's hips are 221 mm apart, the pelvis's 158). The table itself is in
 // docs/methods/skeleton-alignment.md with the reasons for each pair.
 SkeletonCorrespondence rajagopalToMakeHuman();
 
@@ -70,7 +78,8 @@ struct SkeletonPlacement {
 
 // model: the model's bodies in LPS mm (io::transformSkeleton of an OpenSim model). skinAxes: the skin's
 // body frame (BodyFrame::axes()), the rotation taken for a root with fewer than 3 pairs. Throws BadInput
-// naming a body, point or target that does not exist, or a body whose pairs are degenerate.
+// naming a body, point or target that does not exist, a root with a kParentPlaced target, or a body whose
+// pairs are degenerate.
 SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorrespondence& correspondence,
                                 const std::map<std::string, Eigen::Vector3d>& targets, const Eigen::Matrix3d& skinAxes);
 
