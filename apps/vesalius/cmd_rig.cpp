@@ -42,21 +42,12 @@ namespace vesalius::cli {
 
 namespace {
 
-// skeletonFromBoneMeshes on a reference anatomy: `reference full-body` places each OpenSim body by its own
-// fit, and the pelvis's hip centres land about 3 cm medial of the femurs' (docs/methods/
-// skeleton-alignment.md), so the femoral heads stand off the acetabula: within the 6 mm that finds them
-// in the assembled model 3-6 vertices per head remain. Within 20 mm: 42 (left) and 14 (right) head
-// vertices, centres 1.0 and 1.4 mm from the placed femurs' origins (13-30 mm: all within 1.8 mm).
-posing::SkeletonFromBoneMeshesOptions referenceBoneOptions() {
-  posing::SkeletonFromBoneMeshesOptions options;
-  options.acetabulumDistance = 20.0;
-  return options;
-}
-
 struct RigOptions {
   std::string skin, skeleton, baseMesh, out, space = "auto", labels, labelTable, reference;
   posing::SkeletonFromBonesOptions bones;
-  posing::SkeletonFromBoneMeshesOptions meshBones = referenceBoneOptions();
+  // With the femurs placed on the pelvis's hip centres (skeleton_placement.h), the default 6 mm finds 20
+  // (right) and 70 (left) femoral head vertices, centres 1.6 and 0.8 mm from the placed femurs' own.
+  posing::SkeletonFromBoneMeshesOptions meshBones;
   double acetabulumDistance = NAN;  // --acetabulum-distance if given, for bones or meshBones
   std::vector<std::string> tissues;
   double voxelSize = 4.0;
@@ -260,6 +251,11 @@ void rigOfRegions(AnatomyRig& rig, const std::vector<meshing::RegionSurface>& re
     progress.begin("tetrahedralize", "TetGen");
     meshing::TetrahedralizeOptions tet;
     tet.targetTets = o.targetTets;
+    // No Steiner points on the surfaces (TetGen -Y): on the decimated body and bone surfaces, TetGen's
+    // splitting of the surface triangles that its refinement points encroach on made nearly all the tets
+    // (the test CT at --target-tets 20000: 707,544 tets at the first volume bound, 57,723 with -Y;
+    // docs/methods/tetrahedral-meshes.md).
+    tet.keepSurface = true;
     rig.tets = meshing::tetrahedralizeRegions(regions, tet);
     progress.end();
   }
@@ -391,7 +387,7 @@ void addRigCommand(CLI::App& app) {
                   "skin (`reference full-body`); skeleton (pelvis, legs) and bone regions from the meshes");
   cmd->add_option("--acetabulum-distance", o->acetabulumDistance,
                   "With --labels or --reference: femoral head voxels or vertices within this of the hip bone give the "
-                  "hip centre, mm (default 6 with --labels, 20 with --reference)")
+                  "hip centre, mm (default 6)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--base-mesh", o->baseMesh, "MakeHuman base.obj for a .mhskel (default: beside it)");
   cmd->add_option("--tissue", o->tissues, "A mesh to carry along (organ, bone, muscle), repeatable");
@@ -425,7 +421,7 @@ void addRigCommand(CLI::App& app) {
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
       "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
-      "(about 2 minutes; at the defaults TetGen refines around the bones to about 2M tets, 25 minutes)");
+      "(about 20 s and 67k tets; at the defaults about 250k tets, 72 s)");
   cmd->callback([o] { runRig(*o); });
 }
 
