@@ -13,6 +13,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/polydata.h"
+#include "vesalius/viz/display_connection.h"
 
 #include <vtkImageMapToColors.h>
 #include <vtkLookupTable.h>
@@ -107,7 +108,7 @@ int runPicker(const PickerOptions& options) {
   document.setAutosavePath(autosavePath);
   if (restored) std::cerr << "restored unsaved markers from " << autosavePath << "\n";
 
-  const gui::DisplayConnection connection("vesalius-picker");  // outlives the window, which does not close it
+  const viz::DisplayConnection connection("vesalius-picker");  // outlives the window, which does not close it
   PickerWindow window(scan, options.windowWidth, options.windowHeight);
   window.renderWindow()->SetDisplayId(connection.display);
   if (options.playEventsPath.empty()) window.deferView3d(kView3dDelayMs);

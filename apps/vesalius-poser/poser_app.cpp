@@ -9,7 +9,7 @@
 #include "vtk_window_support.h"
 
 #include "vesalius/core/error.h"
-
+#include "vesalius/viz/display_connection.h"
 
 #include <filesystem>
 
@@ -44,7 +44,7 @@ int runPoser(const PoserOptions& options) {
                      std::to_string(motion.frameCount() - 1) + " of " + options.motionPath);
   if (options.method == "cor") session.rig().centres();  // a rig without centres: its BadInput now, not later
 
-  const gui::DisplayConnection connection("vesalius-poser");  // outlives the window, which does not close it
+  const viz::DisplayConnection connection("vesalius-poser");  // outlives the window, which does not close it
   PoserWindow window(options.windowWidth, options.windowHeight, motion.frameCount());
   window.renderWindow()->SetDisplayId(connection.display);
   AnatomyActorsOptions look;

@@ -12,20 +12,9 @@
 #include <vtkSmartPointer.h>
 #include <vtkWindowToImageFilter.h>
 
-#include <cstdlib>
 #include <filesystem>
 
 namespace vesalius::gui {
-
-DisplayConnection::DisplayConnection(const std::string& program) : display(XOpenDisplay(nullptr)) {
-  if (!display) {
-    const char* name = std::getenv("DISPLAY");
-    throw UsageError(std::string("cannot open the X display '") + (name ? name : "") + "'; " + program +
-                     " needs one (without a screen, run it under xvfb-run)");
-  }
-}
-
-DisplayConnection::~DisplayConnection() { XCloseDisplay(display); }
 
 void endLoopOnWindowClose(vtkRenderWindowInteractor* interactor) {
   auto endLoop = vtkSmartPointer<vtkCallbackCommand>::New();

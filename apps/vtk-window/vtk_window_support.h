@@ -1,8 +1,7 @@
-// What the two VTK apps (vesalius-picker, vesalius-poser) do alike around their window: check the X display,
-// end the event loop when the window closes, play recorded events (the GUI tests) and save the window.
+// What the two VTK apps (vesalius-picker, vesalius-poser) do alike around their window: end the event loop
+// when the window closes, play recorded events (the GUI tests) and save the window. The display connection
+// they hand the window is vesalius/viz/display_connection.h.
 #pragma once
-
-#include <X11/Xlib.h>
 
 #include <string>
 
@@ -10,19 +9,6 @@ class vtkRenderWindow;
 class vtkRenderWindowInteractor;
 
 namespace vesalius::gui {
-
-// VTK aborts when it cannot open the X display; this throws UsageError with one line naming `program`
-// instead. Keep it alive and hand `display` to the render window (SetDisplayId): VTK opening a second
-// connection failed now and then under a loaded Xvfb.
-class DisplayConnection {
- public:
-  explicit DisplayConnection(const std::string& program);
-  ~DisplayConnection();
-  DisplayConnection(const DisplayConnection&) = delete;
-  DisplayConnection& operator=(const DisplayConnection&) = delete;
-
-  Display* display;
-};
 
 // Closing the window ends the event loop like the quit key (VTK 9.1's default TerminateApp() crashes
 // inside Start(), BUILD-NOTES.md).

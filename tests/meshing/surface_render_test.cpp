@@ -1,5 +1,5 @@
 // The 3-D surface render. Needs an X display: ctest -L gui under
-// xvfb-run -a -s "-screen 0 1280x1024x24"; without one the render must refuse cleanly.
+// xvfb-run -a -s "-screen 0 1280x1024x24 -noreset"; without one the render must refuse cleanly.
 #include "vesalius/viz/surface_render.h"
 
 #include "vesalius/core/error.h"
@@ -36,6 +36,25 @@ TEST(SurfaceRender, RefusesWithoutADisplay) {
   EXPECT_FALSE(canRenderSurfaces());
   EXPECT_THROW(renderSurfaces({{&mesh}}), UsageError);
   if (!saved.empty()) setenv("DISPLAY", saved.c_str(), 1);
+}
+
+// VTK aborts the process when it cannot connect to the display it is told of; the render opens the
+// connection itself and refuses with one line instead.
+TEST(SurfaceRender, RefusesADisplayItCannotOpen) {
+  const char* display = std::getenv("DISPLAY");
+  const std::string saved = display ? display : "";
+  setenv("DISPLAY", ":987", 1);  // no server listens there
+  const TriMesh mesh = ball();
+  try {
+    renderSurfaces({{&mesh}});
+    ADD_FAILURE() << "rendered without a display";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot open the X display ':987'"), std::string::npos) << e.what();
+  }
+  if (saved.empty())
+    unsetenv("DISPLAY");
+  else
+    setenv("DISPLAY", saved.c_str(), 1);
 }
 
 TEST(SurfaceRender, BallFillsTheMiddleInItsColour) {

@@ -21,7 +21,7 @@
 
 #include <array>
 
-#include "vtk_window_support.h"  // last: Xlib's macros (None, ...) clash with GoogleTest's names
+#include "vesalius/viz/display_connection.h"  // last: Xlib's macros (None, ...) clash with GoogleTest's names
 
 namespace vesalius::picker {
 namespace {
@@ -32,7 +32,7 @@ constexpr int kSize = 800;  // the window; each view a 400 x 400 quadrant
 // One connection for every test: Xvfb resets when its last client leaves, and a connection opened during
 // the reset fails.
 Display* display() {
-  static const gui::DisplayConnection connection("picker_window_test");
+  static const viz::DisplayConnection connection("picker_window_test");
   return connection.display;
 }
 
@@ -76,7 +76,7 @@ TEST(PickerWindow, TimerRendersTheDeferredView3dOnceScrollingStops) {
   // A connection of its own (opened while the shared one keeps Xvfb from resetting): the event loop
   // reads every event of its connection, those of the other tests' windows too.
   display();
-  const gui::DisplayConnection own("picker_window_test");
+  const viz::DisplayConnection own("picker_window_test");
   const ScanVolume scan(io::readScan(kScan));
   PickerWindow window(scan, kSize, kSize);
   window.renderWindow()->SetDisplayId(own.display);

@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "vesalius/viz/display_connection.h"  // last: Xlib's macros (None, Status, ...) clash with other names
+
 namespace vesalius::viz {
 namespace {
 
@@ -87,7 +89,9 @@ RgbImage renderSurfaces(const std::vector<SurfaceLayer>& layers, const SurfaceRe
   renderer->SetUseDepthPeeling(true);
   for (const SurfaceLayer& layer : layers) renderer->AddActor(layerActor(layer));
   placeCamera(renderer);
+  const DisplayConnection connection("a 3-D render");  // outlives the window, which does not close it
   vtkNew<vtkRenderWindow> window;
+  window->SetDisplayId(connection.display);
   window->SetOffScreenRendering(1);
   window->SetAlphaBitPlanes(1);
   window->SetMultiSamples(0);

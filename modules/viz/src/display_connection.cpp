@@ -1,0 +1,19 @@
+#include "vesalius/viz/display_connection.h"
+
+#include "vesalius/core/error.h"
+
+#include <cstdlib>
+
+namespace vesalius::viz {
+
+DisplayConnection::DisplayConnection(const std::string& user) : display(XOpenDisplay(nullptr)) {
+  if (!display) {
+    const char* name = std::getenv("DISPLAY");
+    throw UsageError(std::string("cannot open the X display '") + (name ? name : "") + "'; " + user +
+                     " needs one (without a screen, run it under xvfb-run)");
+  }
+}
+
+DisplayConnection::~DisplayConnection() { XCloseDisplay(display); }
+
+}  // namespace vesalius::viz
