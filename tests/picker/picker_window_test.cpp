@@ -9,6 +9,7 @@
 #include "scan_volume.h"
 
 #include "vesalius/io/image_io.h"
+#include "vesalius/viz/display_connection.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -21,17 +22,15 @@
 
 #include <array>
 
-#include "vesalius/viz/display_connection.h"  // last: Xlib's macros (None, ...) clash with GoogleTest's names
-
 namespace vesalius::picker {
 namespace {
 
 const std::string kScan = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/example_ct.nii.gz";
 constexpr int kSize = 800;  // the window; each view a 400 x 400 quadrant
 
-// One connection for every test: Xvfb resets when its last client leaves, and a connection opened during
-// the reset fails.
-Display* display() {
+// One connection for every test: Xvfb (without -noreset) resets when its last client leaves, and a
+// connection opened during the reset fails.
+void* display() {
   static const viz::DisplayConnection connection("picker_window_test");
   return connection.display;
 }

@@ -2,6 +2,8 @@
 
 #include "vesalius/core/error.h"
 
+#include <X11/Xlib.h>
+
 #include <cstdlib>
 
 namespace vesalius::viz {
@@ -14,6 +16,6 @@ DisplayConnection::DisplayConnection(const std::string& user) : display(XOpenDis
   }
 }
 
-DisplayConnection::~DisplayConnection() { XCloseDisplay(display); }
+DisplayConnection::~DisplayConnection() { XCloseDisplay(static_cast<Display*>(display)); }
 
 }  // namespace vesalius::viz

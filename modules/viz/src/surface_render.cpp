@@ -4,6 +4,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/polydata.h"
+#include "vesalius/viz/display_connection.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -19,8 +20,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-
-#include "vesalius/viz/display_connection.h"  // last: Xlib's macros (None, Status, ...) clash with other names
 
 namespace vesalius::viz {
 namespace {

@@ -1,8 +1,6 @@
 // One connection to the X display, for everything here that opens a VTK render window.
 #pragma once
 
-#include <X11/Xlib.h>
-
 #include <string>
 
 namespace vesalius::viz {
@@ -18,7 +16,7 @@ class DisplayConnection {
   DisplayConnection(const DisplayConnection&) = delete;
   DisplayConnection& operator=(const DisplayConnection&) = delete;
 
-  Display* display;
+  void* display;  // Xlib's Display*, as vtkRenderWindow::SetDisplayId takes it; Xlib's macros stay out of here
 };
 
 }  // namespace vesalius::viz
