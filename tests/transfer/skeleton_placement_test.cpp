@@ -188,7 +188,8 @@ TEST(SkeletonPlacement, FemurRunsFromTheAcetabulumToMakeHumansKnee) {
     const double placed = (knee - hip).norm();
     const int femur = p.model.bodies.find("femur" + s);
     // The bone itself reaches past both joint centres: femoral head above, condyles below.
-    const Eigen::VectorXd along = placedMesh(p, (S == "R" ? "r" : "l") + std::string("_femur.vtp")).V * (knee - hip).normalized();
+    const TriMesh& femurMesh = placedMesh(p, (S == "R" ? "r" : "l") + std::string("_femur.vtp"));
+    const Eigen::VectorXd along = femurMesh.V * (knee - hip).normalized();
     const double bone = along.maxCoeff() - along.minCoeff();
     std::printf("femur%s: MakeHuman hip-knee %.1f mm, placed joints %.1f mm, placed bone %.1f mm, scale %.3f\n",
                 s.c_str(), makeHuman, placed, bone, p.placement.bodies[std::size_t(femur)].scale);
@@ -209,7 +210,8 @@ TEST(SkeletonPlacement, FemoralHeadsInTheAcetabula) {
   for (std::size_t g = 0; g < p.model.geometry.size(); ++g)
     meshes.emplace(std::filesystem::path(p.model.geometry[g].meshFile).stem().string(), p.placedMeshes[g]);
   const posing::MeshSkeleton bones = posing::skeletonFromBoneMeshes(meshes);
-  for (const auto& [s, leg] : {std::pair<std::string, const posing::LegJoints*>{"_r", &bones.right}, {"_l", &bones.left}}) {
+  using Side = std::pair<std::string, const posing::LegJoints*>;
+  for (const auto& [s, leg] : {Side{"_r", &bones.right}, Side{"_l", &bones.left}}) {
     const posing::SphereFit& head = leg->femoralHead;
     const double off = (head.centre - placedOrigin(p, "femur" + s, "pelvis")).norm();
     std::printf("femur%s: %ld head vertices within 6 mm of the pelvis, radius %.1f mm, rms %.2f mm, centre %.2f mm "
