@@ -629,7 +629,10 @@ void addFitCommand(CLI::App& app) {
   cmd->add_option("--template-landmarks", o->templateLandmarks, "Landmarks on the template, paired by label");
   cmd->add_option("--scan-landmarks", o->scanLandmarks,
                   "The same landmarks in the scan; alone, each must carry its template position");
-  cmd->add_option("--attach-to", o->attachTo, "Bone surface (world mm) the organ inserts on");
+  cmd->add_option("--attach-to", o->attachTo,
+                  "Bone surface (world mm) the organ inserts on: the insertion itself (from labels: surface "
+                  "--label BONE --shared --touching MUSCLE), since of a whole bone every vertex within "
+                  "--attach-radius is attached");
   cmd->add_option("--attach-radius", o->attachRadius,
                   "Bone vertices within this distance (mm) of the placed template are attached");
   cmd->add_option("--attachments", o->attachments,
@@ -692,7 +695,7 @@ void addFitCommand(CLI::App& app) {
       "Examples:\n  vesalius fit --template liver.vtu --icp liver_icp.mrk.json --unattached --out liver_fitted.vtu "
       "--overlay ct.nii.gz --png liver_fit.png --report liver_fit.json\n"
       "  vesalius fit --template muscle.stl --icp icp.mrk.json --template-landmarks tl.mrk.json --scan-landmarks "
-      "sl.mrk.json --attach-to bone.vtp --attach-radius 2 --out muscle.vtu --surface-out muscle.vtp\n"
+      "sl.mrk.json --attach-to insertion.vtp --attach-radius 5 --out muscle.vtu --surface-out muscle.vtp\n"
       "Landmarks pair by label; a label without a partner is refused (exit 3), a pair with an undefined point "
       "skipped.");
   cmd->callback([o] { runFit(*o); });

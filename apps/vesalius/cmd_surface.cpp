@@ -7,6 +7,7 @@
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/shared_label_surfaces.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -20,20 +21,53 @@ struct SurfaceOptions {
   int smoothIterations = -1;  // -1: each method's default
   int targetFaces = 0;
   bool shared = false;
+  std::string touching;  // --touching: only where each chosen label meets this one
   CommonOptions common;
 };
 
-// Touching labels share their triangles (SurfaceNets); one mesh per label all the same.
-std::vector<meshing::LabelSurface> sharedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
-                                                  const SurfaceOptions& o, io::Report& report, Progress& progress) {
+std::string labelName(const LabelMap& map, Label id) {
+  const LabelEntry* entry = map.table.find(id);
+  return entry ? entry->name : std::to_string(id);
+}
+
+meshing::SharedLabelSurfaces makeShared(const LabelMap& map, const std::vector<Label>& ids, const SurfaceOptions& o,
+                                        io::Report& report, Progress& progress) {
   meshing::SharedSurfaceOptions options;
   if (o.smoothIterations >= 0) options.smoothingIterations = o.smoothIterations;
   const meshing::SharedLabelSurfaces shared = meshing::sharedLabelSurfaces(map, ids, options, &progress);
   report.metric("repaired_voxels", shared.repairedVoxels);
+  return shared;
+}
+
+// Touching labels share their triangles (SurfaceNets); one mesh per label all the same.
+std::vector<meshing::LabelSurface> sharedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                                  const SurfaceOptions& o, io::Report& report, Progress& progress) {
+  const meshing::SharedLabelSurfaces shared = makeShared(map, ids, o, report, progress);
   std::vector<meshing::LabelSurface> surfaces;
-  for (Label id : shared.ids) {
-    const LabelEntry* entry = map.table.find(id);
-    surfaces.push_back({id, entry ? entry->name : std::to_string(id), meshing::surfaceOfLabel(shared, id)});
+  for (Label id : shared.ids) surfaces.push_back({id, labelName(map, id), meshing::surfaceOfLabel(shared, id)});
+  return surfaces;
+}
+
+// --touching: each chosen label's interface with the other label, from the shared surfaces of them all (a
+// muscle's insertion on a bone, seed 002 §4.1.2). A chosen label that does not touch it is refused.
+std::vector<meshing::LabelSurface> interfaceSurfaces(const LabelMap& map, std::vector<Label> ids,
+                                                     const SurfaceOptions& o, io::Report& report, Progress& progress) {
+  const Label other = resolveLabel(map, o.touching, o.labels);
+  if (std::find(ids.begin(), ids.end(), other) != ids.end())
+    throw UsageError("surface: --touching " + o.touching + " is also a --label");
+  const std::vector<Label> chosen = ids;
+  ids.push_back(other);
+  const meshing::SharedLabelSurfaces shared = makeShared(map, ids, o, report, progress);
+  if (!std::binary_search(shared.ids.begin(), shared.ids.end(), other))
+    throw BadInput(o.labels, "label '" + o.touching + "' has no voxels");
+  std::vector<meshing::LabelSurface> surfaces;
+  for (Label id : chosen) {
+    if (!std::binary_search(shared.ids.begin(), shared.ids.end(), id))
+      throw BadInput(o.labels, "label '" + labelName(map, id) + "' has no voxels");
+    TriMesh mesh = meshing::interfaceOfLabels(shared, id, other);
+    if (mesh.F.rows() == 0)
+      throw BadInput(o.labels, "label '" + labelName(map, id) + "' does not touch label '" + o.touching + "'");
+    surfaces.push_back({id, labelName(map, id), std::move(mesh)});
   }
   return surfaces;
 }
@@ -46,7 +80,10 @@ void runSurface(const SurfaceOptions& o) {
                                                    : meshing::SurfaceOptions{}.smoothingIterations);
   report.parameter("target_faces", o.targetFaces);
   report.parameter("shared", o.shared);
+  report.parameter("touching", o.touching);
   if (o.shared && o.targetFaces > 0) throw UsageError("surface: --target-faces cannot keep --shared boundaries shared");
+  if (!o.touching.empty() && !o.shared) throw UsageError("surface: --touching needs --shared");
+  if (!o.touching.empty() && o.selected.empty()) throw UsageError("surface: --touching needs at least one --label");
   const LabelMap map = io::readLabelMap(o.labels, o.table);
 
   std::vector<Label> ids;
@@ -62,7 +99,9 @@ void runSurface(const SurfaceOptions& o) {
   std::vector<meshing::LabelSurface> surfaces;
   {
     auto timer = report.time("surfaces");
-    surfaces = o.shared ? sharedSurfaces(map, ids, o, report, progress) : meshing::labelSurfaces(map, ids, options, &progress);
+    surfaces = !o.touching.empty() ? interfaceSurfaces(map, ids, o, report, progress)
+               : o.shared          ? sharedSurfaces(map, ids, o, report, progress)
+                                   : meshing::labelSurfaces(map, ids, options, &progress);
   }
   for (const meshing::LabelSurface& s : surfaces) {
     const std::string path = single ? o.out : (std::filesystem::path(o.out) / (s.name + o.format)).string();
@@ -91,9 +130,14 @@ void addSurfaceCommand(CLI::App& app) {
   cmd->add_option("--target-faces", o->targetFaces, "Decimate to about this many triangles (0: keep all)");
   cmd->add_flag("--shared", o->shared,
                 "Touching labels share their boundary triangles (SurfaceNets; --smooth counts its passes)");
+  cmd->add_option("--touching", o->touching,
+                  "With --shared: only the part of each --label's surface where it touches this label (id or "
+                  "name), an open surface oriented out of the --label (a muscle's insertion on a bone)");
   addCommonOptions(*cmd, o->common);
   cmd->footer("Examples:\n  vesalius surface --labels labels.nii.gz --label liver --out liver.stl\n"
-              "  vesalius surface --labels seg.nii.gz --label hip_left --label femur_left --shared --out hip/");
+              "  vesalius surface --labels seg.nii.gz --label hip_left --label femur_left --shared --out hip/\n"
+              "  vesalius surface --labels seg.nii.gz --label hip_left --shared --touching gluteus_medius_left "
+              "--out insertion.vtp");
   cmd->callback([o] { runSurface(*o); });
 }
 

@@ -82,6 +82,32 @@ TEST(SharedLabelSurfaces, TouchingLabelsShareTheirTrianglesAndKeepTheirVolumes) 
   EXPECT_LT(worst, 0.5);
 }
 
+// Where labels 1 and 2 touch: the disc x = 0 of the 12 mm ball, facing out of label 1 (+x) as seen from it
+// and reversed as seen from label 2; labels 1 and 3 do not touch.
+TEST(SharedLabelSurfaces, InterfaceOfTwoLabelsIsWhereTheyTouch) {
+  const SharedLabelSurfaces s = sharedLabelSurfaces(splitBall(), {});
+  const TriMesh disc = interfaceOfLabels(s, 1, 2);
+  ASSERT_GT(disc.F.rows(), 0);
+  EXPECT_EQ(triangleComponents(disc.V.rows(), disc.F), 1);
+  EXPECT_EQ(countEdges(disc.F).nonManifold, 0);
+  EXPECT_GT(countEdges(disc.F).boundary, 0);
+  EXPECT_LT(disc.V.col(0).cwiseAbs().maxCoeff(), 0.5);
+  const double area = triangleAreas(disc.V, disc.F).sum();
+  EXPECT_NEAR(area / (M_PI * 12.0 * 12.0), 1.0, 0.05) << area;  // measured 0.988
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // area-weighted, 2 × area × mean unit normal
+  for (Eigen::Index f = 0; f < disc.F.rows(); ++f)
+    normal += (disc.V.row(disc.F(f, 1)) - disc.V.row(disc.F(f, 0)))
+                  .cross(disc.V.row(disc.F(f, 2)) - disc.V.row(disc.F(f, 0)))
+                  .transpose();
+  EXPECT_GT(normal.x() / (2.0 * area), 0.95);  // measured 0.986: the rim follows the voxels
+  const TriMesh back = interfaceOfLabels(s, 2, 1);
+  EXPECT_EQ(back.F.rows(), disc.F.rows());
+  EXPECT_NEAR(triangleAreas(back.V, back.F).sum(), area, 1e-9 * area);
+  EXPECT_EQ(interfaceOfLabels(s, 1, 3).F.rows(), 0);
+  EXPECT_THROW(interfaceOfLabels(s, 1, 1), UsageError);
+  EXPECT_THROW(interfaceOfLabels(s, 1, 42), UsageError);
+}
+
 // One conforming tet mesh of the three labels: each label's tets fill exactly what its surface encloses.
 TEST(SharedLabelSurfaces, TouchingLabelsGiveOneConformingTetMesh) {
   const SharedLabelSurfaces s = sharedLabelSurfaces(splitBall(), {});

@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace vesalius::meshing {
 namespace {
@@ -252,15 +255,18 @@ SharedLabelSurfaces sharedLabelSurfaces(const LabelMap& labels, const std::vecto
   return out;
 }
 
-TriMesh surfaceOfLabel(const SharedLabelSurfaces& surfaces, Label id) {
-  if (!std::binary_search(surfaces.ids.begin(), surfaces.ids.end(), id))
-    throw UsageError("shared surfaces: label " + std::to_string(id) + " has no surface");
+namespace {
+
+// The faces of `surfaces` with `id` on one side and, if `other` is given, `other` on the other side,
+// oriented out of `id`, with only the vertices they use; face attribute kLabel = id.
+TriMesh facesOfLabel(const SharedLabelSurfaces& surfaces, Label id, std::optional<Label> other) {
   std::vector<int> index(std::size_t(surfaces.V.rows()), -1);
   std::vector<Eigen::RowVector3i> faces;
   int used = 0;
   for (Eigen::Index f = 0; f < surfaces.F.rows(); ++f) {
     const bool out = surfaces.sides(f, 0) == id, in = surfaces.sides(f, 1) == id;
     if (!out && !in) continue;
+    if (other && surfaces.sides(f, out ? 1 : 0) != *other) continue;
     Eigen::RowVector3i face = surfaces.F.row(f);
     if (in) std::swap(face(1), face(2));
     for (int k = 0; k < 3; ++k) {
@@ -278,6 +284,25 @@ TriMesh surfaceOfLabel(const SharedLabelSurfaces& surfaces, Label id) {
   for (std::size_t f = 0; f < faces.size(); ++f) mesh.F.row(Eigen::Index(f)) = faces[f];
   mesh.faceAttributes.integer[kLabel] = Eigen::VectorXi::Constant(mesh.F.rows(), int(id));
   return mesh;
+}
+
+void requireSurface(const SharedLabelSurfaces& surfaces, Label id) {
+  if (!std::binary_search(surfaces.ids.begin(), surfaces.ids.end(), id))
+    throw UsageError("shared surfaces: label " + std::to_string(id) + " has no surface");
+}
+
+}  // namespace
+
+TriMesh surfaceOfLabel(const SharedLabelSurfaces& surfaces, Label id) {
+  requireSurface(surfaces, id);
+  return facesOfLabel(surfaces, id, std::nullopt);
+}
+
+TriMesh interfaceOfLabels(const SharedLabelSurfaces& surfaces, Label id, Label other) {
+  requireSurface(surfaces, id);
+  requireSurface(surfaces, other);
+  if (id == other) throw UsageError("shared surfaces: label " + std::to_string(id) + " cannot touch itself");
+  return facesOfLabel(surfaces, id, other);
 }
 
 }  // namespace vesalius::meshing
