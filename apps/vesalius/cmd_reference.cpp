@@ -187,16 +187,28 @@ void runFullBody(const FullBodyOptions& o) {
   model.bodies = io::transformSkeleton(model.bodies, io::openSimToLps(), 1000.0);
   for (Muscle& m : model.muscles)
     for (PathPoint& point : m.path) point.location = 1000.0 * io::openSimToLps() * point.location;
+  const transfer::SkeletonCorrespondence correspondence = transfer::rajagopalToMakeHuman();
   const transfer::SkeletonPlacement placement =
-      transfer::placeSkeleton(model.bodies, transfer::rajagopalToMakeHuman(), joints, frame.axes());
-  std::map<int, std::string> firstTissueOfBody;
+      transfer::placeSkeleton(model.bodies, correspondence, joints, frame.axes());
   const fs::path geometryDir = fs::path(o.model).parent_path() / "Geometry";
+  std::vector<TriMesh> meshes;  // per geometry entry, vertices in its body's frame (LPS mm)
+  std::map<std::string, MatrixX3d> localMeshes;
   for (const AttachedGeometry& g : model.geometry) {
-    TriMesh mesh = io::readTriMesh((geometryDir / g.meshFile).string());
-    mesh.V = transfer::placeBodyPoints(model.bodies, placement, g.body,
-                                       io::transformPoints(mesh.V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0));
-    const std::string body = model.bodies.joints[g.body].name;
-    ReferenceTissue tissue{fs::path(g.meshFile).stem().string(), TissueKind::Bone, body, isTrunkBody(body), std::move(mesh)};
+    meshes.push_back(io::readTriMesh((geometryDir / g.meshFile).string()));
+    meshes.back().V = io::transformPoints(meshes.back().V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0);
+    localMeshes[fs::path(g.meshFile).stem().string()] = meshes.back().V;
+  }
+  const std::map<std::string, fit::SimilarityTransform> digits =
+      transfer::placeDigits(model.bodies, placement, correspondence.digits, localMeshes, transfer::boneSegments(rig));
+  std::map<int, std::string> firstTissueOfBody;
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const AttachedGeometry& g = model.geometry[m];
+    const std::string name = fs::path(g.meshFile).stem().string(), body = model.bodies.joints[g.body].name;
+    TriMesh mesh = std::move(meshes[m]);
+    const auto digit = digits.find(name);
+    mesh.V = digit == digits.end() ? transfer::placeBodyPoints(model.bodies, placement, g.body, mesh.V)
+                                   : digit->second.apply(transfer::restWorldPoints(model.bodies, g.body, mesh.V));
+    ReferenceTissue tissue{name, TissueKind::Bone, body, isTrunkBody(body), std::move(mesh)};
     firstTissueOfBody.emplace(g.body, tissue.name);
     anatomy.tissues.push_back(std::move(tissue));
   }

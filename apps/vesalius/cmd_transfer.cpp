@@ -83,8 +83,9 @@ std::vector<Eigen::VectorXd> signedDistances(const TriMesh& body, const std::vec
 }
 
 // The vertices inside the reference skin that the transfer put outside the target's (R5, R6), beside
-// those outside in the reference already: a segmentation's labels may run a voxel past its body surface
-// where the field of view cuts both, and no transfer should be blamed for that. Vertices within a field
+// those outside in the reference already and all those outside the target's skin: a segmentation's labels
+// may run a voxel past its body surface where the field of view cuts both, and no transfer should be blamed
+// for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
 // field's first-order error at the skin; `deepMm` counts those deeper apart.
 void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result,
@@ -93,12 +94,13 @@ void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const 
   for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
   const std::vector<Eigen::VectorXd> before = signedDistances(reference.skin, rest),
                                      after = signedDistances(body, result.tissues);
-  long total = 0, outsideBefore = 0, pushedOut = 0, deepPushedOut = 0;
+  long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0;
   double worstPushedOut = 0;
   for (std::size_t t = 0; t < rest.size(); ++t) {
     long tissuePushedOut = 0;
     for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
       ++total;
+      outsideAfter += after[t][r] > 0;
       if (before[t][r] > 0) {
         ++outsideBefore;
       } else if (after[t][r] > 0) {
@@ -112,6 +114,7 @@ void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const 
   }
   report.metric("tissue_vertices", total);
   report.metric("reference_outside_vertices", outsideBefore);
+  report.metric("target_outside_vertices", outsideAfter);
   report.metric("pushed_out_vertices", pushedOut);
   report.metric("pushed_out_worst_mm", worstPushedOut);
   report.metric("pushed_out_deep_vertices", deepPushedOut);

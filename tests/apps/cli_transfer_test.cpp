@@ -183,8 +183,10 @@ TEST(CliTransfer, AWiderFlatterBody) {
 // seed 004, carried into the thin MakeHuman body (its own mesh, registered, not taken by vertex index).
 // What holds: long bones stay straight and the trunk symmetric (R1, R2), every bone maps with a positive
 // determinant, points on bones move with them (R7). What does not yet (docs/methods/anatomy-transfer.md):
-// the hands, whose bones the placement leaves partly outside the skin and whose skin registers worst, fold
-// the field and push bone vertices out; the report counts both and this test bounds them.
+// the hands, whose skin registers 50-60 mm off its true place (the hand bones, now inside the reference's
+// hands, follow it out of the target's), and the trunk's one affine map, which pushes ribs, scapulae, spine
+// and skull out where the thin body has less over them and folds the field beside the scapulae; the report
+// counts both and this test bounds them.
 TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const std::string dir = freshDir("full-body");
   const std::string body = std::string(VESALIUS_TESTDATA) + "/body/";
@@ -234,12 +236,17 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
         << reference.points[p].name;
   }
   EXPECT_GT(onBone, 20);
-  // Known gaps, bounded so that a regression shows (measured: 7 folded interior cells, all in the hands;
-  // 362 vertices a voxel or more inside the reference skin end outside the target's; 357 before session 14).
-  std::cout << "interior folds " << m["jacobian_interior_nonpositive_cells"] << ", deep vertices pushed out "
-            << m["pushed_out_deep_vertices"] << "\n";
-  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 20);
-  EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 600);
+  // Known gaps, bounded so that a regression shows. Measured (session 15, the hands' bones placed digit by
+  // digit): 6 folded interior cells, all 11-15 mm from the scapulae (7 before: the same 6 and one in the
+  // thumb); 9,623 of 30,751 tissue vertices outside the target's skin (11,950 before, when 55% of the hands'
+  // vertices were outside the reference's own skin); 804 vertices a voxel or more inside the reference skin
+  // end outside the target's (362 before): 560 in the hands, which the reference now has inside, 229 in the
+  // trunk, 13 in the feet, 2 in the pelvis.
+  std::cout << "interior folds " << m["jacobian_interior_nonpositive_cells"] << ", vertices outside the target "
+            << m["target_outside_vertices"] << ", deep vertices pushed out " << m["pushed_out_deep_vertices"] << "\n";
+  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 8);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 9800);
+  EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 850);
 }
 
 }  // namespace vesalius::test

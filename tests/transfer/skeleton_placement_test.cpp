@@ -28,7 +28,22 @@ struct PlacedModel {
   BodyFrame frame;
   std::map<std::string, Eigen::Vector3d> targets;
   SkeletonPlacement placement;
+  std::map<std::string, MatrixX3d> localByName;                  // localMeshes by the file name's stem
+  std::map<std::string, fit::SimilarityTransform> digits;        // placeDigits: the hands' bones
 };
+
+std::string stem(const std::string& file) { return std::filesystem::path(file).stem().string(); }
+
+// A mesh placed as `vesalius reference full-body` places it: digit bones by their own similarity, the rest
+// with their body.
+MatrixX3d placeMesh(const PlacedModel& p, const SkeletonPlacement& placement,
+                    const std::map<std::string, fit::SimilarityTransform>& digits, std::size_t g) {
+  const AttachedGeometry& geometry = p.model.geometry[g];
+  const auto digit = digits.find(stem(geometry.meshFile));
+  return digit == digits.end()
+             ? placeBodyPoints(p.model.bodies, placement, geometry.body, p.localMeshes[g])
+             : digit->second.apply(restWorldPoints(p.model.bodies, geometry.body, p.localMeshes[g]));
+}
 
 const PlacedModel& placedModel() {
   static const PlacedModel placed = [] {
@@ -43,11 +58,15 @@ const PlacedModel& placedModel() {
     p.targets["head-spine"] = p.frame.headSpineJoint;
     p.placement = placeSkeleton(p.model.bodies, rajagopalToMakeHuman(), p.targets, p.frame.axes());
     for (const AttachedGeometry& g : p.model.geometry) {
-      TriMesh mesh = io::readTriMesh(kModelDir + "Geometry/" + g.meshFile);
-      p.localMeshes.push_back(io::transformPoints(mesh.V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0));
-      mesh.V = placeBodyPoints(p.model.bodies, p.placement, g.body, p.localMeshes.back());
-      p.placedMeshes.push_back(std::move(mesh));
+      p.placedMeshes.push_back(io::readTriMesh(kModelDir + "Geometry/" + g.meshFile));
+      p.localMeshes.push_back(
+          io::transformPoints(p.placedMeshes.back().V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0));
+      p.localByName[stem(g.meshFile)] = p.localMeshes.back();
     }
+    p.digits = placeDigits(p.model.bodies, p.placement, rajagopalToMakeHuman().digits, p.localByName,
+                           boneSegments(body.rig));
+    for (std::size_t g = 0; g < p.placedMeshes.size(); ++g)
+      p.placedMeshes[g].V = placeMesh(p, p.placement, p.digits, g);
     return p;
   }();
   return placed;
@@ -70,7 +89,7 @@ Eigen::Vector3d placedOrigin(const PlacedModel& p, const std::string& of, const 
 double minimumInside(const std::string& body) {
   const std::map<std::string, double> measured = {
       {"pelvis", 0.88}, {"femur", 1.0}, {"tibia", 1.0},   {"patella", 0.64}, {"talus", 1.0},   {"calcn", 0.83},
-      {"toes", 0.20},   {"torso", 0.66}, {"humerus", 1.0}, {"ulna", 0.94},    {"radius", 0.72}, {"hand", 0.43}};
+      {"toes", 0.20},   {"torso", 0.66}, {"humerus", 1.0}, {"ulna", 0.94},    {"radius", 0.72}, {"hand", 0.92}};
   return measured.at(body.substr(0, body.find('_'))) - 0.05;
 }
 
@@ -151,6 +170,59 @@ TEST(SkeletonPlacement, NeighbouringBodiesAgreeOnTheirJoints) {
               shoulder, head);
   EXPECT_LT(rms, 26.0);
   EXPECT_LT(std::max({back, shoulder, head}), 35.0);  // measured 13.6, 23.3, 32.7
+}
+
+// Each digit bone (metacarpal, phalanges) goes onto one MakeHuman bone: its proximal joint on the bone's
+// head, its distal joint on the tail, exactly (a two-point fit), so neighbouring bones of a digit meet. The
+// tip's bone keeps the digit's mean scale and lies along its MakeHuman bone, whose tail is at the skin.
+TEST(SkeletonPlacement, DigitBonesOnMakeHumansFingerBones) {
+  const PlacedModel& p = placedModel();
+  const auto skinBones = boneSegments(test::makeHumanBody().rig);
+  int bones = 0;
+  double lowest = 1e9, highest = 0;
+  for (const DigitCorrespondence& digit : rajagopalToMakeHuman().digits) {
+    const int body = p.model.bodies.find(digit.body);
+    std::vector<MatrixX3d> rest;
+    for (const std::string& bone : digit.bones)
+      rest.push_back(restWorldPoints(p.model.bodies, body, p.localByName.at(bone)));
+    const MatrixX3d joints = digitJoints(rest, p.model.bodies.restWorld()[std::size_t(body)].translation());
+    ASSERT_EQ(joints.rows(), Eigen::Index(digit.bones.size() + 1));
+    double scaleSum = 0;
+    for (std::size_t b = 0; b < digit.bones.size(); ++b) {
+      const fit::SimilarityTransform& t = p.digits.at(digit.bones[b]);
+      const auto& [head, tail] = skinBones.at(digit.skinBones[b]);
+      const Eigen::Vector3d proximal = t.apply(Eigen::Vector3d(joints.row(Eigen::Index(b)).transpose())),
+                            distal = t.apply(Eigen::Vector3d(joints.row(Eigen::Index(b) + 1).transpose()));
+      EXPECT_LT((proximal - head).norm(), 1e-6) << digit.bones[b];
+      if (b + 1 < digit.bones.size()) {
+        EXPECT_LT((distal - tail).norm(), 1e-6) << digit.bones[b];
+        scaleSum += t.scale;
+      } else {
+        EXPECT_LT((distal - head).normalized().cross((tail - head).normalized()).norm(), 1e-9) << digit.bones[b];
+        EXPECT_NEAR(t.scale, scaleSum / double(b), 1e-12) << digit.bones[b];
+      }
+      lowest = std::min(lowest, t.scale), highest = std::max(highest, t.scale);
+      ++bones;
+    }
+  }
+  std::printf("digit bones: %d, scales %.3f to %.3f\n", bones, lowest, highest);
+  EXPECT_EQ(bones, 38);  // 19 a hand: 5 metacarpals, 14 phalanges
+  EXPECT_EQ(p.digits.size(), 38u);
+}
+
+// The joints of a straight chain of two boxes: the first box's near end, the middle of the gap, the far end.
+TEST(SkeletonPlacement, DigitJointsOfAStraightChain) {
+  const auto box = [](double from, double to) {
+    MatrixX3d V(8, 3);
+    for (int c = 0; c < 8; ++c) V.row(c) << (c & 1 ? to : from), (c & 2 ? 2.0 : -2.0), (c & 4 ? 1.0 : -1.0);
+    return V;
+  };
+  // Listed with the far box's corners in any order; the base decides which end is proximal.
+  const MatrixX3d joints = digitJoints({box(30, 10), box(34, 60)}, Eigen::Vector3d(0, 0, 0));
+  MatrixX3d expected(3, 3);
+  expected << 10, 0, 0, 32, 0, 0, 60, 0, 0;
+  EXPECT_LT((joints - expected).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_THROW(digitJoints({MatrixX3d(2, 3)}, Eigen::Vector3d::Zero()), BadInput);
 }
 
 TEST(SkeletonPlacement, BonesInsideTheSkin) {
@@ -278,9 +350,12 @@ TEST(SkeletonPlacement, TurnsWithTheSkin) {
   for (const auto& [name, x] : body.joints) targets[name] = move(x);
   targets["head-spine"] = frame.headSpineJoint;
   const SkeletonPlacement turned = placeSkeleton(p.model.bodies, rajagopalToMakeHuman(), targets, frame.axes());
+  std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> skinBones;
+  for (const auto& [name, ends] : boneSegments(body.rig)) skinBones[name] = {move(ends.first), move(ends.second)};
+  const auto digits = placeDigits(p.model.bodies, turned, rajagopalToMakeHuman().digits, p.localByName, skinBones);
   double worst = 0;
   for (std::size_t g = 0; g < p.model.geometry.size(); ++g) {
-    const MatrixX3d placed = placeBodyPoints(p.model.bodies, turned, p.model.geometry[g].body, p.localMeshes[g]);
+    const MatrixX3d placed = placeMesh(p, turned, digits, g);
     const MatrixX3d expected = (p.placedMeshes[g].V * R.transpose()).rowwise() + shift.transpose();
     worst = std::max(worst, (placed - expected).rowwise().norm().maxCoeff());
   }
@@ -302,4 +377,14 @@ TEST(SkeletonPlacement, BadCorrespondence) {
   c.bodies[0].modelPoints = {"femur_r", "femur_r"};
   EXPECT_THROW(placeSkeleton(p.model.bodies, c, p.targets, p.frame.axes()), BadInput);
   EXPECT_THROW(placeBodyPoints(p.model.bodies, p.placement, 99, MatrixX3d(0, 3)), UsageError);
+  const auto skinBones = boneSegments(test::makeHumanBody().rig);
+  std::vector<DigitCorrespondence> digits = rajagopalToMakeHuman().digits;
+  digits[0].skinBones[1] = "no-such-bone";
+  EXPECT_THROW(placeDigits(p.model.bodies, p.placement, digits, p.localByName, skinBones), BadInput);
+  digits = rajagopalToMakeHuman().digits;
+  digits[0].bones[0] = "no-such-mesh";
+  EXPECT_THROW(placeDigits(p.model.bodies, p.placement, digits, p.localByName, skinBones), BadInput);
+  digits = rajagopalToMakeHuman().digits;
+  digits[0].skinBones.pop_back();
+  EXPECT_THROW(placeDigits(p.model.bodies, p.placement, digits, p.localByName, skinBones), BadInput);
 }

@@ -3,6 +3,7 @@
 
 #include "vesalius/core/error.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -67,7 +68,7 @@ fit::SimilarityTransform twoPointFit(const MatrixX3d& from, const MatrixX3d& to,
                                      const std::string& body) {
   const Eigen::Vector3d a = from.row(1) - from.row(0), b = to.row(1) - to.row(0);
   if (!(a.norm() > 1e-9 && b.norm() > 1e-9))
-    throw BadInput("", "skeleton placement: the two joints of body '" + body + "' coincide");
+    throw BadInput("", "skeleton placement: the two joints of '" + body + "' coincide");
   fit::SimilarityTransform t;
   t.scale = b.norm() / a.norm();
   t.rotation = Eigen::Quaterniond::FromTwoVectors(reference * a, b).toRotationMatrix() * reference;
@@ -103,6 +104,59 @@ fit::SimilarityTransform fitBody(const MatrixX3d& from, const MatrixX3d& to, con
   return t;
 }
 
+// A digit bone's ends on its principal axis, the distal one away from `from`.
+struct BoneEnds {
+  Eigen::Vector3d proximal, distal, centroid;
+};
+
+BoneEnds boneEnds(const MatrixX3d& V, const Eigen::Vector3d& from, std::size_t bone) {
+  if (V.rows() < 3) throw BadInput("", "digit joints: bone " + std::to_string(bone) + " has fewer than 3 vertices");
+  const Eigen::Vector3d centroid = V.colwise().mean().transpose();
+  const MatrixX3d centred = V.rowwise() - centroid.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  Eigen::Vector3d axis = eigen.eigenvectors().col(2);
+  if (axis.dot(centroid - from) < 0) axis = -axis;
+  const Eigen::VectorXd along = centred * axis;
+  return {centroid + along.minCoeff() * axis, centroid + along.maxCoeff() * axis, centroid};
+}
+
+// The digit's bones (vertices in the rest pose, world) from the correspondence's mesh names.
+std::vector<MatrixX3d> digitBones(const Skeleton& model, int body, const DigitCorrespondence& digit,
+                                  const std::map<std::string, MatrixX3d>& localMeshes) {
+  std::vector<MatrixX3d> bones;
+  for (const std::string& name : digit.bones) {
+    const auto it = localMeshes.find(name);
+    if (it == localMeshes.end())
+      throw BadInput("", "skeleton placement: no mesh '" + name + "' on body '" + digit.body + "'");
+    bones.push_back(restWorldPoints(model, body, it->second));
+  }
+  return bones;
+}
+
+// One digit's bones onto its skin bones (placeDigits), turning from `previous` (the placed body).
+void placeDigitBones(const MatrixX3d& joints, const DigitCorrespondence& digit,
+                     const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones,
+                     fit::SimilarityTransform previous, std::map<std::string, fit::SimilarityTransform>& out) {
+  double scaleSum = 0;
+  for (std::size_t b = 0; b < digit.bones.size(); ++b) {
+    const auto skin = skinBones.find(digit.skinBones[b]);
+    if (skin == skinBones.end()) throw BadInput("", "skeleton placement: no skin bone '" + digit.skinBones[b] + "'");
+    MatrixX3d to(2, 3);
+    to << skin->second.first.transpose(), skin->second.second.transpose();
+    fit::SimilarityTransform t =
+        twoPointFit(joints.middleRows(Eigen::Index(b), 2), to, previous.rotation, digit.bones[b]);
+    if (b > 0 && b + 1 == digit.bones.size()) {
+      // The tip: the skin bone's tail is at the fingertip's skin, past the bone's end, so the last bone
+      // takes the mean scale of the digit's other bones and only turns onto the skin bone from its head.
+      t.scale = scaleSum / double(b);
+      t.translation = to.row(0).transpose() - t.scale * t.rotation * joints.row(Eigen::Index(b)).transpose();
+    }
+    scaleSum += t.scale;
+    previous = t;
+    out[digit.bones[b]] = t;
+  }
+}
+
 }  // namespace
 
 SkeletonCorrespondence rajagopalToMakeHuman() {
@@ -118,6 +172,23 @@ SkeletonCorrespondence rajagopalToMakeHuman() {
     c.landmarks.push_back({"mcp2" + s, "hand" + s, Eigen::Vector3d(-17.145 * side, -4.112, -81.147)});
     c.landmarks.push_back({"mcp5" + s, "hand" + s, Eigen::Vector3d(31.435 * side, 0.499, -67.941)});
   }
+  // The digits: Rajagopal's metacarpal 1 and thumb phalanges onto MakeHuman's finger1 bones; metacarpals
+  // 2–5 onto MakeHuman's metacarpal1–4, their phalanges onto finger2–5.
+  const std::vector<std::string> fingers = {"thumb", "index", "middle", "ring", "little"};
+  for (const std::string side : {"r", "l"}) {
+    const std::string S = side == "r" ? ".R" : ".L", mesh = "_" + side + "vs";
+    c.digits.push_back({"hand_" + side,
+                        {"metacarpal1" + mesh, "thumb_proximal" + mesh, "thumb_distal" + mesh},
+                        {"finger1-1" + S, "finger1-2" + S, "finger1-3" + S}});
+    for (int f = 2; f <= 5; ++f) {
+      const std::string finger = fingers[std::size_t(f - 1)], n = std::to_string(f);
+      c.digits.push_back({"hand_" + side,
+                          {"metacarpal" + n + mesh, finger + "_proximal" + mesh, finger + "_medial" + mesh,
+                           finger + "_distal" + mesh},
+                          {"metacarpal" + std::to_string(f - 1) + S, "finger" + n + "-1" + S, "finger" + n + "-2" + S,
+                           "finger" + n + "-3" + S}});
+    }
+  }
   c.bodies.push_back(
       {"pelvis", {"femur_r", "femur_l"}, {"upperleg01.R", "upperleg01.L"}, {"femur_r", "femur_l", "torso"}});
   c.bodies.push_back(pairs("torso", {"torso", "humerus_r", "humerus_l", "atlas"},
@@ -131,6 +202,14 @@ std::map<std::string, Eigen::Vector3d> jointPositions(const Skeleton& skeleton) 
   const std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
   std::map<std::string, Eigen::Vector3d> out;
   for (std::size_t j = 0; j < world.size(); ++j) out[skeleton.joints[j].name] = world[j].translation();
+  return out;
+}
+
+std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> boneSegments(const Skeleton& skeleton) {
+  const std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
+  std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> out;
+  for (std::size_t j = 0; j < world.size(); ++j)
+    out[skeleton.joints[j].name] = {world[j].translation(), world[j] * skeleton.joints[j].tail};
   return out;
 }
 
@@ -179,12 +258,49 @@ SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorresponde
   return out;
 }
 
+MatrixX3d restWorldPoints(const Skeleton& model, int body, const MatrixX3d& local) {
+  if (body < 0 || std::size_t(body) >= model.joints.size())
+    throw UsageError("restWorldPoints: body " + std::to_string(body) + " is not one of the model's");
+  const Eigen::Isometry3d rest = model.restWorld()[std::size_t(body)];
+  return (local * rest.linear().transpose()).rowwise() + rest.translation().transpose();
+}
+
 MatrixX3d placeBodyPoints(const Skeleton& model, const SkeletonPlacement& placement, int body, const MatrixX3d& local) {
   if (body < 0 || std::size_t(body) >= model.joints.size() || placement.bodies.size() != model.joints.size())
     throw UsageError("placeBodyPoints: body " + std::to_string(body) + " is not one of the placed model's");
-  const Eigen::Isometry3d rest = model.restWorld()[std::size_t(body)];
-  const MatrixX3d world = (local * rest.linear().transpose()).rowwise() + rest.translation().transpose();
-  return placement.bodies[std::size_t(body)].apply(world);
+  return placement.bodies[std::size_t(body)].apply(restWorldPoints(model, body, local));
+}
+
+MatrixX3d digitJoints(const std::vector<MatrixX3d>& bones, const Eigen::Vector3d& base) {
+  MatrixX3d joints(Eigen::Index(bones.size() + 1), 3);
+  Eigen::Vector3d from = base, distal = base;
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    const BoneEnds ends = boneEnds(bones[b], from, b);
+    const Eigen::Vector3d joint = b == 0 ? ends.proximal : Eigen::Vector3d(0.5 * (distal + ends.proximal));
+    joints.row(Eigen::Index(b)) = joint.transpose();
+    distal = ends.distal;
+    from = ends.centroid;
+  }
+  joints.row(joints.rows() - 1) = distal.transpose();
+  return joints;
+}
+
+std::map<std::string, fit::SimilarityTransform> placeDigits(
+    const Skeleton& model, const SkeletonPlacement& placement, const std::vector<DigitCorrespondence>& digits,
+    const std::map<std::string, MatrixX3d>& localMeshes,
+    const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones) {
+  std::map<std::string, fit::SimilarityTransform> out;
+  for (const DigitCorrespondence& digit : digits) {
+    const int body = model.find(digit.body);
+    if (body < 0 || std::size_t(body) >= placement.bodies.size())
+      throw BadInput("", "skeleton placement: no placed body '" + digit.body + "' for a digit");
+    if (digit.bones.empty() || digit.bones.size() != digit.skinBones.size())
+      throw BadInput("", "skeleton placement: a digit of body '" + digit.body + "' has unpaired bones");
+    const MatrixX3d joints =
+        digitJoints(digitBones(model, body, digit, localMeshes), model.restWorld()[std::size_t(body)].translation());
+    placeDigitBones(joints, digit, skinBones, placement.bodies[std::size_t(body)], out);
+  }
+  return out;
 }
 
 std::vector<MatrixX3d> placeMusclePaths(const Skeleton& model, const SkeletonPlacement& placement,

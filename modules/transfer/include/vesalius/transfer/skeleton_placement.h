@@ -13,6 +13,10 @@
 // (kParentPlaced) instead of a skin point: the body then meets its placed parent at that joint (a chain),
 // where the parent's own fit does not land on the skin's joint (the femoral heads in the acetabula of a
 // pelvis scaled by `scaleFrom`).
+// Digits (DigitCorrespondence) are placed after the bodies, bone by bone: a model that keeps a hand's
+// carpals, metacarpals and phalanges in one rigid body with straight fingers (Rajagopal 2016) cannot
+// follow a skin whose fingers are spread and curled (MakeHuman's), so each digit bone gets a similarity of
+// its own onto one skin bone (its head and tail), as a long bone onto its two joints.
 // This is not seed 004's joint-by-joint refinement of a rig (its §3.2 onwards moves joints inside the
 // skin); here the skin's rig is taken as given and the model's bones follow it.
 //
@@ -57,19 +61,34 @@ struct BodyCorrespondence {
   std::vector<std::string> scaleFrom = {};
 };
 
+// A digit of one model body: its bones (mesh names, the file name's stem), proximal to distal, each placed
+// onto one bone of the skin's rig: the bone's proximal joint on the skin bone's head, its distal joint on
+// the skin bone's tail; the last bone (the tip) only along its skin bone (placeDigits). The model's joints
+// are taken from the meshes (digitJoints).
+struct DigitCorrespondence {
+  std::string body;
+  std::vector<std::string> bones;
+  std::vector<std::string> skinBones;  // as many as bones
+};
+
 struct SkeletonCorrespondence {
   std::vector<ModelLandmark> landmarks;
   std::vector<BodyCorrespondence> bodies;  // bodies not listed move with their parent
+  std::vector<DigitCorrespondence> digits;  // bones placed one by one instead of with their body
 };
 
 // Rajagopal 2016 (testdata/skeleton-opensim) onto MakeHuman's default.mhskel: targets are MakeHuman bone
 // names (the bone's head joint), "head-spine" (body_frame.h) and, for the femurs' hip centres, the placed
-// pelvis's (kParentPlaced: MakeHuman's hips are 221 mm apart, the pelvis's 158). The table itself is in
+// pelvis's (kParentPlaced: MakeHuman's hips are 221 mm apart, the pelvis's 158). The hands' five digits
+// (metacarpal and phalanges) go onto MakeHuman's metacarpal and finger bones. The table itself is in
 // docs/methods/skeleton-alignment.md with the reasons for each pair.
 SkeletonCorrespondence rajagopalToMakeHuman();
 
 // Each joint's rest position (world translation) by joint name: the target map of a rig. #joints entries.
 std::map<std::string, Eigen::Vector3d> jointPositions(const Skeleton& skeleton);
+
+// Each bone's rest head and tail (world; the tail is Joint::tail) by bone name: the skin bones of digits.
+std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> boneSegments(const Skeleton& skeleton);
 
 struct SkeletonPlacement {
   std::vector<fit::SimilarityTransform> bodies;  // one per model body, model order
@@ -87,6 +106,30 @@ SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorresponde
 // their placed world positions: the model's rest pose, then the body's similarity. Throws UsageError for a
 // body index out of range.
 MatrixX3d placeBodyPoints(const Skeleton& model, const SkeletonPlacement& placement, int body, const MatrixX3d& local);
+
+// The joints of a digit from its bones' meshes (#bones + 1 rows, in the meshes' space): the first bone's
+// proximal end, the midpoints of each bone's distal end and the next bone's proximal end, the last bone's
+// distal end. A bone's ends are the extremes of its vertices along its principal axis, on that axis (through
+// the centroid), the proximal one the end nearer to `base` (for the first bone) or to the previous bone's
+// centroid. Throws BadInput naming the bone for a mesh with fewer than 3 vertices.
+MatrixX3d digitJoints(const std::vector<MatrixX3d>& bones, const Eigen::Vector3d& base);
+
+// The digits of `correspondence` placed bone by bone: per bone (by mesh name) the similarity that takes its
+// vertices in the model's rest pose (world, as restWorldPoints gives them) into the skin. Each is the
+// two-point fit of the bone's joints (digitJoints, from the body's origin) onto its skin bone's head and
+// tail, turned from the previous bone's rotation (the body's placed one for the first), so the twist about
+// the digit comes from the body. The last bone of a digit of two or more (the tip, whose skin bone ends at
+// the skin, past the bone) has the mean scale of the others, its proximal joint on its skin bone's head and
+// its axis along that bone. localMeshes: each named bone's vertices in its body's frame. Throws BadInput
+// naming a body, bone or skin bone that does not exist, or a bone whose joints coincide.
+std::map<std::string, fit::SimilarityTransform> placeDigits(
+    const Skeleton& model, const SkeletonPlacement& placement, const std::vector<DigitCorrespondence>& digits,
+    const std::map<std::string, MatrixX3d>& localMeshes,
+    const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones);
+
+// Points fixed in `body` (#P by 3, in the body's frame) in the model's rest pose (world, LPS mm). Throws
+// UsageError for a body index out of range.
+MatrixX3d restWorldPoints(const Skeleton& model, int body, const MatrixX3d& local);
 
 // Every muscle's path (#points by 3, world LPS mm) with each point placed with its body. Locations must
 // be in LPS mm (converted like the model). Throws UsageError for a point fixed to ground.
