@@ -157,10 +157,17 @@ void runReference(const ReferenceOptions& o) {
 // OpenSim bodies of the trunk (seed 000 §8: skull, spine, sternum, pelvis, rib cage move symmetrically).
 bool isTrunkBody(const std::string& body) { return body == "pelvis" || body == "torso"; }
 
+// A bone mesh's group (the bones that move by one map in §8): its OpenSim body, but for the skull and jaw,
+// which Rajagopal's torso carries with the spine and rib cage: §8 gives each trunk bone a map of its own,
+// and one trunk map scaled the skull with a muscular body's chest (determinant 1.9) into its face.
+std::string boneGroup(const std::string& body, const std::string& mesh) {
+  return body == "torso" && (mesh == "hat_skull" || mesh == "hat_jaw") ? "skull" : body;
+}
+
 // The full-body reference (seed 000 §3): the MakeHuman skin with the OpenSim model's bones and muscle
 // path points placed inside it by seed 004's body frame and per-body similarity fits (skeleton_placement.h).
-// Each bone mesh is a tissue; the meshes of one OpenSim body form one bone group; path points are fixed to
-// their body's first mesh.
+// Each bone mesh is a tissue; the meshes of one OpenSim body form one bone group (boneGroup: the skull
+// apart); path points are fixed to their body's first mesh.
 void runFullBody(const FullBodyOptions& o) {
   io::Report report("reference full-body");
   report.input("skin", o.skin);
@@ -208,7 +215,7 @@ void runFullBody(const FullBodyOptions& o) {
     const auto digit = digits.find(name);
     mesh.V = digit == digits.end() ? transfer::placeBodyPoints(model.bodies, placement, g.body, mesh.V)
                                    : digit->second.apply(transfer::restWorldPoints(model.bodies, g.body, mesh.V));
-    ReferenceTissue tissue{name, TissueKind::Bone, body, isTrunkBody(body), std::move(mesh)};
+    ReferenceTissue tissue{name, TissueKind::Bone, boneGroup(body, name), isTrunkBody(body), std::move(mesh)};
     firstTissueOfBody.emplace(g.body, tissue.name);
     anatomy.tissues.push_back(std::move(tissue));
   }

@@ -300,8 +300,11 @@ void runLabelRig(const RigOptions& o) {
 }
 
 // The OpenSim bodies that have no joint in skeletonFromBoneMeshes but move rigidly with one: the foot
-// (calcaneus, toes) with the talus, as there are no subtalar and toe joints. Other bodies are their joint.
+// (calcaneus, toes) with the talus, as there are no subtalar and toe joints; the "skull" group (the
+// torso's skull and jaw, which `reference full-body` groups apart) with the torso. Other bodies are their
+// joint.
 std::string jointOfBody(const std::string& body) {
+  if (body == "skull") return "torso";
   for (const char* foot : {"calcn_", "toes_"})
     if (body.rfind(foot, 0) == 0) return "talus_" + body.substr(std::strlen(foot));
   return body;

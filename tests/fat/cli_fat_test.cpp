@@ -654,9 +654,10 @@ TEST(CliFatEdit, BadAmountsAreOneLineErrors) {
                         "--out", out, "--force", "--progress", "none"});
   };
   const std::string file = outputDir() + "/unknown.json";
-  const CommandResult unknown = run("unknown", R"({"pelvis": 0.4, "skull": 0})");
+  const CommandResult unknown = run("unknown", R"({"pelvis": 0.4, "sternum": 0})");
   EXPECT_EQ(unknown.exitCode, 3);
-  expectContains(unknown.err, "vesalius: " + file + ": no bone or bone group 'skull' in the reference (its bones: pelvis,");
+  expectContains(unknown.err,
+                 "vesalius: " + file + ": no bone or bone group 'sternum' in the reference (its bones: pelvis,");
   EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1);
   const CommandResult member = run("member", R"({"r_pelvis": 0.4})");
   EXPECT_EQ(member.exitCode, 3);
@@ -675,7 +676,7 @@ TEST(CliFatEdit, BadAmountsAreOneLineErrors) {
                                               fullBodyReference() + "/skin.obj", "--fat-amounts", file, "--out",
                                               outputDir() + "/no_transfer", "--progress", "none"});
   EXPECT_EQ(transfer.exitCode, 3);
-  expectContains(transfer.err, "no bone or bone group 'skull'");
+  expectContains(transfer.err, "no bone or bone group 'sternum'");
   const CommandResult both = runVesalius({"transfer", "--reference", fullBodyReference(), "--target-skin",
                                           fullBodyReference() + "/skin.obj", "--fat", "5", "--fat-amounts", file,
                                           "--out", outputDir() + "/no_transfer", "--progress", "none"});
