@@ -2,8 +2,10 @@
 
 #include "vesalius/core/error.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -25,13 +27,24 @@ using Eigen::Index;
 extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
                        const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 
-// AᵀA α, lower triangle only, for A: rows by columns (column-major, contiguous columns).
+// AᵀA α, lower triangle only, for A: rows by columns (column-major, contiguous columns). Row blocks on
+// all cores, summed in a fixed order so that results are reproducible; each block is one BLAS call on the
+// calling thread (CHOLMOD's setting keeps OpenBLAS single-threaded).
 Eigen::MatrixXd lowerGram(const Eigen::Ref<const Eigen::MatrixXd>& A, double alpha) {
-  const int n = int(A.cols()), k = int(A.rows()), lda = int(A.outerStride());
-  const double beta = 0.0;
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  if (n > 0 && k > 0) dsyrk_("L", "T", &n, &k, &alpha, A.data(), &lda, &beta, C.data(), &n);
-  return C;
+  constexpr Index kRowBlock = 8192;
+  const int n = int(A.cols()), lda = int(A.outerStride());
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Index>(0, A.rows(), kRowBlock), Eigen::MatrixXd(Eigen::MatrixXd::Zero(n, n)),
+      [&](const tbb::blocked_range<Index>& r, Eigen::MatrixXd sum) {
+        const int k = int(r.size());
+        const double beta = 1.0;
+        if (n > 0 && k > 0) dsyrk_("L", "T", &n, &k, &alpha, A.data() + r.begin(), &lda, &beta, sum.data(), &n);
+        return sum;
+      },
+      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
+        a += b;
+        return a;
+      });
 }
 
 double weightSquared(Index c) { return kPlasticStrainWeights[std::size_t(c)] * kPlasticStrainWeights[std::size_t(c)]; }
@@ -170,21 +183,18 @@ Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z) const {
   if (Z.cols() != 6 * m) throw BadInput("", "smoothness solver: Z has the wrong number of columns");
   // Column-major Z (#C by 6#T) read as 6#C by #T: entry (r + C c, t) = Z(r, 6t + c).
   const Eigen::Map<const Eigen::MatrixXd> Zr(Z.data(), 6 * C, m);
-  const Eigen::VectorXd mean = Zr.rowwise().mean();
-  Eigen::MatrixXd G(m - 1, 6 * C);
-  transposeShifted(Zr.rightCols(m - 1), mean, G);
-  applyScalarPseudoInverse(G);  // G = Lsc⁺ (Z_cᵀ − mean), component c in columns [cC, cC + C)
-  // Σ_c G_cᵀ G_c / ξ_c² over all #T rows (row 0 restored).
-  std::array<Eigen::MatrixXd, 6> parts;
-  tbb::parallel_for(0, 6, [&](int c) {
-    const auto Gc = G.middleCols(c * C, C);
-    const Eigen::RowVectorXd row0 = -Gc.colwise().sum();
-    Eigen::MatrixXd P = lowerGram(Gc, 1.0 / weightSquared(c));
-    P.selfadjointView<Eigen::Lower>().rankUpdate(row0.transpose(), 1.0 / weightSquared(c));
-    parts[std::size_t(c)] = P;
-  });
-  Eigen::MatrixXd result = parts[0];
-  for (std::size_t c = 1; c < 6; ++c) result += parts[c];
+  // Z (L²)⁺ Zᵀ = Σ_c G_cᵀ G_c / ξ_c² for G_c = Lsc⁺ (Z_cᵀ − mean), one component at a time in one buffer
+  // (#T by #C, a sixth of Z): first touches of fresh memory cost 20 µs a page on a virtual machine, more
+  // than the transpose that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z).
+  Eigen::MatrixXd G(m - 1, C), result = Eigen::MatrixXd::Zero(C, C);
+  for (Index c = 0; c < 6; ++c) {
+    const auto Zc = Zr.middleRows(c * C, C);
+    transposeShifted(Zc.rightCols(m - 1), Zc.rowwise().mean(), G);
+    applyScalarPseudoInverse(G);
+    const double weight = 1.0 / weightSquared(c);
+    result += lowerGram(G, weight);
+    result.selfadjointView<Eigen::Lower>().rankUpdate(G.colwise().sum().transpose(), weight);  // row 0: −Σ rows
+  }
   return result.selfadjointView<Eigen::Lower>();
 }
 
