@@ -2,10 +2,12 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/transparent_huge_pages.h"
 
 #include <iostream>
 
 int main(int argc, char** argv) {
+  vesalius::restartWithTransparentHugePages(argv);  // the fits' and rigs' matrices fault in 2 MB at a time
   CLI::App app{"Vesalius: patient-specific anatomical models from CT and MRI scans.", "vesalius"};
   app.require_subcommand(1);
   app.set_version_flag("--version", VESALIUS_VERSION);
