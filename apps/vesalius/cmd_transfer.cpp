@@ -15,6 +15,7 @@
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/anatomy_transfer.h"
+#include "vesalius/transfer/articulated_registration.h"
 #include "vesalius/transfer/skin_registration.h"
 #include "vesalius/viz/surface_render.h"
 
@@ -31,7 +32,8 @@ namespace vesalius::cli {
 namespace {
 
 struct TransferOptions {
-  std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts, laplaceSolver = "mg";
+  std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts, laplaceSolver = "mg",
+              registration = "articulated";
   double voxelSize = 3;
   int registrationIterations = transfer::SkinRegistrationOptions{}.iterations;
   CommonOptions common;
@@ -42,6 +44,16 @@ TriMesh readTarget(const TransferOptions& o) {
   if (o.space == "makehuman") skin.V = io::transformPoints(skin.V, io::yUpToLps(), 100.0);
   else if (o.space != "lps") throw UsageError("transfer: --space must be lps or makehuman");
   return skin;
+}
+
+// The reference skin onto a target skin: §4's ICP with shape matching, after the articulated stage unless
+// --registration plain (articulated_registration.h).
+transfer::SkinRegistration registerReferenceSkin(const ReferenceAnatomy& reference, const transfer::SkinParts& parts,
+                                                 const MatrixX3d& Vt, const MatrixX3i& Ft, const TransferOptions& o) {
+  transfer::ArticulatedRegistrationOptions options;
+  options.registration.iterations = o.registrationIterations;
+  if (o.registration == "plain") return transfer::registerSkin(reference.skin.V, reference.skin.F, Vt, Ft, options.registration);
+  return transfer::registerSkinArticulated(reference.skin.V, reference.skin.F, parts, Vt, Ft, options).registration;
 }
 
 // No fat where the scan's field of view cut the body: those vertices are not skin.
@@ -97,7 +109,7 @@ void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const 
   long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0;
   double worstPushedOut = 0;
   for (std::size_t t = 0; t < rest.size(); ++t) {
-    long tissuePushedOut = 0;
+    long tissuePushedOut = 0, tissueDeep = 0;
     for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
       ++total;
       outsideAfter += after[t][r] > 0;
@@ -105,12 +117,14 @@ void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const 
         ++outsideBefore;
       } else if (after[t][r] > 0) {
         ++tissuePushedOut;
-        deepPushedOut += before[t][r] <= -deepMm;
+        tissueDeep += before[t][r] <= -deepMm;
         worstPushedOut = std::max(worstPushedOut, after[t][r]);
       }
     }
     pushedOut += tissuePushedOut;
+    deepPushedOut += tissueDeep;
     if (tissuePushedOut) report.metric("pushed_out_vertices_" + reference.tissues[t].name, tissuePushedOut);
+    if (tissueDeep) report.metric("pushed_out_deep_vertices_" + reference.tissues[t].name, tissueDeep);
   }
   report.metric("tissue_vertices", total);
   report.metric("reference_outside_vertices", outsideBefore);
@@ -197,6 +211,7 @@ void runTransfer(const TransferOptions& o) {
   report.parameter("fat", o.fatAmounts.empty() ? o.fat : o.fatAmounts);
   report.parameter("voxel_size_mm", o.voxelSize);
   report.parameter("registration_iterations", o.registrationIterations);
+  report.parameter("registration", o.registration);
   report.parameter("laplace_solver", o.laplaceSolver);
   Progress progress(o.common.progressStyle());
   auto start = std::chrono::steady_clock::now();
@@ -215,12 +230,11 @@ void runTransfer(const TransferOptions& o) {
                                   : boneFatAtSkin(reference, o.reference, o.fatAmounts, BoneFatSettings{}, report);
   report.parameter("fat_kind", fatKind);
 
-  transfer::SkinRegistrationOptions registrationOptions;
-  registrationOptions.iterations = o.registrationIterations;
   progress.begin("register", "skin registration (ICP with shape matching)");
   start = std::chrono::steady_clock::now();
-  const transfer::SkinRegistration registered =
-      transfer::registerSkin(reference.skin.V, reference.skin.F, target.V, target.F, registrationOptions);
+  const transfer::SkinParts parts = transfer::skinPartsFromBones(reference);
+  report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
+  const transfer::SkinRegistration registered = registerReferenceSkin(reference, parts, target.V, target.F, o);
   endStage("skin registration");
   progress.end();
   report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
@@ -243,8 +257,7 @@ void runTransfer(const TransferOptions& o) {
     // registration had scaled the reference to the fatter body (its similarity alignment) and stretched it
     // along the surface, and that stretch would carry into the bones (rule R3).
     auto timer = report.time("sub-fat registration");
-    const transfer::SkinRegistration subFat =
-        transfer::registerSkin(reference.skin.V, reference.skin.F, eroded.V, reference.skin.F, registrationOptions);
+    const transfer::SkinRegistration subFat = registerReferenceSkin(reference, parts, eroded.V, reference.skin.F, o);
     report.metric("sub_fat_registration_mean_distance_mm", subFat.finalMeanDistance);
     report.metric("sub_fat_registration_scale", subFat.alignment.scale);
     eroded.V = subFat.V;
@@ -331,6 +344,11 @@ void addTransferCommand(CLI::App& app) {
       ->check(CLI::IsMember({"mg", "cg"}))
       ->capture_default_str();
   cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
+      ->capture_default_str();
+  cmd->add_option("--registration", o->registration,
+                  "Skin registration: articulated (the reference skin cut into parts by its bones, limbs turned about "
+                  "their joints before ICP with shape matching) or plain (ICP with shape matching alone, seed 000 §4)")
+      ->check(CLI::IsMember({"articulated", "plain"}))
       ->capture_default_str();
   cmd->add_option("--png", o->png,
                   "Render of the transferred anatomy inside the translucent skin, and of the reference beside it "

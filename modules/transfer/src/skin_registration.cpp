@@ -1,5 +1,7 @@
 #include "vesalius/transfer/skin_registration.h"
 
+#include "skin_correspondences.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"
 
@@ -8,7 +10,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -16,7 +17,10 @@
 namespace vesalius::transfer {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::Pair;
+using detail::Target;
+using detail::correspondences;
+using detail::sourcePoint;
 
 void checkMesh(const MatrixX3d& V, const MatrixX3i& F, const std::string& name) {
   if (V.rows() == 0 || F.rows() == 0) throw BadInput("", "skin registration: the " + name + " is empty");
@@ -44,27 +48,6 @@ void checkLandmarks(const std::vector<SkinLandmark>& landmarks, Eigen::Index ver
   }
 }
 
-// Unit face normals (#F by 3; zero for a degenerate face) and area-weighted unit vertex normals (#V by 3).
-MatrixX3d faceNormals(const MatrixX3d& V, const MatrixX3i& F) {
-  MatrixX3d N(F.rows(), 3);
-  tbb::parallel_for(Eigen::Index(0), F.rows(), [&](Eigen::Index f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    N.row(f) = (b - a).cross(c - a).stableNormalized().transpose();
-  });
-  return N;
-}
-
-MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F) {
-  MatrixX3d N = MatrixX3d::Zero(V.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();  // twice the area times the normal
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
-  }
-  for (Eigen::Index v = 0; v < V.rows(); ++v) N.row(v) = N.row(v).stableNormalized();
-  return N;
-}
-
 // Each vertex's neighbours by graph distance up to `rings`: members[v] lists them nearest ring first
 // (v itself first), and levelEnd[v][r] is the count within r rings.
 struct Rings {
@@ -73,16 +56,7 @@ struct Rings {
 };
 
 Rings buildRings(Eigen::Index vertexCount, const MatrixX3i& F, int rings) {
-  std::vector<std::vector<int>> adjacent(vertexCount);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      adjacent[F(f, k)].push_back(F(f, (k + 1) % 3));
-      adjacent[F(f, (k + 1) % 3)].push_back(F(f, k));
-    }
-  for (auto& a : adjacent) {
-    std::sort(a.begin(), a.end());
-    a.erase(std::unique(a.begin(), a.end()), a.end());
-  }
+  const std::vector<std::vector<int>> adjacent = detail::skinNeighbours(vertexCount, F);
   Rings result{std::vector<std::vector<int>>(vertexCount), std::vector<std::vector<int>>(vertexCount)};
   using Range = tbb::blocked_range<Eigen::Index>;
   tbb::parallel_for(Range(0, vertexCount, 256), [&](const Range& range) {
@@ -107,60 +81,6 @@ Rings buildRings(Eigen::Index vertexCount, const MatrixX3i& F, int rings) {
   return result;
 }
 
-// A correspondence: the point Σ b_k x_{v_k} of the source belongs at `target`, with weight `weight`.
-struct Pair {
-  std::array<int, 3> vertices{};
-  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();
-  double weight = 0;
-};
-
-struct Target {
-  const MatrixX3d& V;
-  TriangleTree tree;
-  MatrixX3d faceNormals, vertexNormals;
-};
-
-// forward: the closest points on the target of the rows of X.
-std::vector<Pair> correspondences(const MatrixX3d& X, const MatrixX3i& Fs, const std::vector<ClosestPoint>& forward,
-                                  const Target& target, const std::vector<SkinLandmark>& landmarks,
-                                  const SkinRegistrationOptions& options) {
-  const double minCos = std::cos(options.maxNormalAngleDeg * kPi / 180) - 1e-12;
-  const MatrixX3d sourceNormals = vertexNormals(X, Fs);
-  std::vector<Pair> pairs;
-  for (Eigen::Index v = 0; v < X.rows(); ++v)
-    if (sourceNormals.row(v).dot(target.faceNormals.row(forward[v].face)) >= minCos)
-      pairs.push_back({{int(v), int(v), int(v)}, Eigen::Vector3d(1, 0, 0), forward[v].point, 1.0});
-  if (options.symmetric) {
-    const TriangleTree sourceTree(X, Fs);
-    const MatrixX3d sourceFaceNormals = faceNormals(X, Fs);
-    const std::vector<ClosestPoint> backward = sourceTree.closest(target.V);
-    const double weight = double(X.rows()) / double(target.V.rows());  // both directions weigh the same
-    for (Eigen::Index t = 0; t < target.V.rows(); ++t) {
-      const ClosestPoint& c = backward[t];
-      if (target.vertexNormals.row(t).dot(sourceFaceNormals.row(c.face)) >= minCos)
-        pairs.push_back({{Fs(c.face, 0), Fs(c.face, 1), Fs(c.face, 2)}, c.barycentric, target.V.row(t), weight});
-    }
-  }
-  for (const SkinLandmark& l : landmarks)
-    pairs.push_back({{l.sourceVertex, l.sourceVertex, l.sourceVertex}, Eigen::Vector3d(1, 0, 0), l.target,
-                     options.landmarkWeight});
-  return pairs;
-}
-
-Eigen::Vector3d sourcePoint(const MatrixX3d& X, const Pair& p) {
-  return p.barycentric[0] * X.row(p.vertices[0]).transpose() + p.barycentric[1] * X.row(p.vertices[1]).transpose() +
-         p.barycentric[2] * X.row(p.vertices[2]).transpose();
-}
-
-fit::SimilarityTransform compose(const fit::SimilarityTransform& second, const fit::SimilarityTransform& first) {
-  fit::SimilarityTransform t;
-  t.scale = second.scale * first.scale;
-  t.rotation = second.rotation * first.rotation;
-  t.translation = second.apply(first.translation);
-  return t;
-}
-
 Eigen::Vector3d areaCentroid(const MatrixX3d& V, const MatrixX3i& F) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double area = 0;
@@ -175,7 +95,7 @@ Eigen::Vector3d areaCentroid(const MatrixX3d& V, const MatrixX3i& F) {
 }
 
 // Step 1: landmarks or centroids, then similarity ICP on the pairs above.
-fit::SimilarityTransform alignSource(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3i& Ft,
+fit::SimilarityTransform similarityAlignment(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3i& Ft,
                                      const Target& target, const std::vector<SkinLandmark>& landmarks,
                                      const SkinRegistrationOptions& options) {
   fit::SimilarityTransform total;
@@ -200,7 +120,7 @@ fit::SimilarityTransform alignSource(const MatrixX3d& Vs, const MatrixX3i& Fs, c
       to.row(p) = pairs[p].target.transpose();
       w[p] = pairs[p].weight;
     }
-    total = compose(fit::fitSimilarity(from, to, w, true), total);
+    total = detail::compose(fit::fitSimilarity(from, to, w, true), total);
   }
   return total;
 }
@@ -287,16 +207,25 @@ std::pair<double, double> distances(const std::vector<ClosestPoint>& closest) {
 
 }  // namespace
 
+fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+                                   const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
+  checkOptions(options);
+  checkMesh(Vs, Fs, "source skin");
+  checkMesh(Vt, Ft, "target skin");
+  checkLandmarks(landmarks, Vs.rows());
+  return similarityAlignment(Vs, Fs, Ft, detail::makeTarget(Vt, Ft), landmarks, options);
+}
+
 SkinRegistration registerSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
                               const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
   checkOptions(options);
   checkMesh(Vs, Fs, "source skin");
   checkMesh(Vt, Ft, "target skin");
   checkLandmarks(landmarks, Vs.rows());
-  const Target target{Vt, TriangleTree(Vt, Ft), faceNormals(Vt, Ft), vertexNormals(Vt, Ft)};
+  const Target target = detail::makeTarget(Vt, Ft);
 
   SkinRegistration result;
-  if (options.align) result.alignment = alignSource(Vs, Fs, Ft, target, landmarks, options);
+  if (options.align) result.alignment = similarityAlignment(Vs, Fs, Ft, target, landmarks, options);
   const MatrixX3d Q = result.alignment.apply(Vs);  // the rest shape of the shape matching
   const Rings clusters = buildRings(Vs.rows(), Fs, options.ringsStart);
   MatrixX3d X = Q;

@@ -66,6 +66,12 @@ struct SkinRegistration {
   double finalMaxDistance = 0;
 };
 
+// Step 1 alone: the similarity transform that aligns the source to the target (landmarks or centroids,
+// then options.alignIterations of similarity ICP). Arguments and errors as registerSkin's.
+fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+                                   const SkinRegistrationOptions& options = {},
+                                   const std::vector<SkinLandmark>& landmarks = {});
+
 // Vs: #Vs by 3, Fs: #Fs by 3 (source skin); Vt: #Vt by 3, Ft: #Ft by 3 (target skin); mm, LPS, triangles
 // counter-clockwise seen from outside. Throws BadInput on an empty mesh, a non-finite coordinate, a face
 // index out of range or a bad landmark; UsageError on impossible options. Deterministic: the result does

@@ -1,0 +1,54 @@
+// Internal to the transfer module: the closest-point correspondences of the skin registration
+// (skin_registration.h, step 2) and the composition of similarity transforms, shared by its ICP and by
+// the articulated stage (articulated_registration.h).
+#pragma once
+
+#include "vesalius/core/mesh.h"
+#include "vesalius/core/triangle_tree.h"
+#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/transfer/skin_registration.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace vesalius::transfer::detail {
+
+// Unit face normals (#F by 3; zero for a degenerate face) and area-weighted unit vertex normals (#V by 3).
+MatrixX3d faceNormals(const MatrixX3d& V, const MatrixX3i& F);
+MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F);
+
+// Each vertex's neighbours along the edges of the faces F (sorted, unique).
+std::vector<std::vector<int>> skinNeighbours(Eigen::Index vertexCount, const MatrixX3i& F);
+
+// A correspondence: the point Σ b_k x_{v_k} of the source belongs at `target`, with weight `weight`.
+struct Pair {
+  std::array<int, 3> vertices{};
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  double weight = 0;
+};
+
+// The target skin with what the correspondences need of it.
+struct Target {
+  const MatrixX3d& V;
+  TriangleTree tree;
+  MatrixX3d faceNormals, vertexNormals;
+};
+Target makeTarget(const MatrixX3d& Vt, const MatrixX3i& Ft);
+
+// The pairs of the source X (faces Fs) with the target: forward (every source vertex to its closest point
+// `forward` on the target), backward when options.symmetric (every target vertex to its closest point on
+// the source), pairs whose normals differ by more than options.maxNormalAngleDeg dropped; then landmarks.
+std::vector<Pair> correspondences(const MatrixX3d& X, const MatrixX3i& Fs, const std::vector<ClosestPoint>& forward,
+                                  const Target& target, const std::vector<SkinLandmark>& landmarks,
+                                  const SkinRegistrationOptions& options);
+
+// The source point of a pair, Σ b_k x_{v_k}.
+Eigen::Vector3d sourcePoint(const MatrixX3d& X, const Pair& p);
+
+// The transform x -> second(first(x)).
+fit::SimilarityTransform compose(const fit::SimilarityTransform& second, const fit::SimilarityTransform& first);
+
+}  // namespace vesalius::transfer::detail
