@@ -300,20 +300,22 @@ void runLabelRig(const RigOptions& o) {
 }
 
 // The OpenSim bodies that have no joint in skeletonFromBoneMeshes but move rigidly with one: the foot
-// (calcaneus, toes) with the talus, as there are no subtalar and toe joints; the "skull" group (the
-// torso's skull and jaw, which `reference full-body` groups apart) with the torso. Other bodies are their
-// joint.
+// (calcaneus, toes) with the talus, as there are no subtalar and toe joints; the radius with the ulna (the
+// forearm is one bone, no radioulnar joint); the "skull" group (the torso's skull and jaw, which
+// `reference full-body` groups apart) with the torso. Other bodies are their joint (the patellae have
+// none: they follow the weights).
 std::string jointOfBody(const std::string& body) {
   if (body == "skull") return "torso";
   for (const char* foot : {"calcn_", "toes_"})
     if (body.rfind(foot, 0) == 0) return "talus_" + body.substr(std::strlen(foot));
+  if (body.rfind("radius_", 0) == 0) return "ulna_" + body.substr(std::strlen("radius_"));
   return body;
 }
 
 // Seed 001 §3.2 for a reference anatomy: its skin and, per joint, the bone meshes of the joint's OpenSim
 // body (the tissues' group, jointOfBody) voxelized into one label map (bone_mesh_labels.h: label j + 1
 // for joint j), then nested region surfaces as for --labels. boneLabels: per joint its label, none for a
-// joint with no bone voxel (the spine, arms and head of a lower-body skeleton have no joint at all).
+// joint with no bone voxel (a hand outside the skin at coarse voxels would have none).
 std::vector<meshing::RegionSurface> referenceRegions(const ReferenceAnatomy& reference, const Skeleton& skeleton,
                                                      std::vector<std::vector<Label>>& boneLabels, const RigOptions& o,
                                                      Progress& progress) {
@@ -387,7 +389,7 @@ void addRigCommand(CLI::App& app) {
   cmd->add_option("--label-table", o->labelTable, "Label table for --labels (default: the one beside it)");
   cmd->add_option("--reference", o->reference,
                   "Instead of --skin/--skeleton or --labels: a reference anatomy with OpenSim's bone meshes in its "
-                  "skin (`reference full-body`); skeleton (pelvis, legs) and bone regions from the meshes");
+                  "skin (`reference full-body`); skeleton (pelvis, legs, torso, arms) and bone regions from the meshes");
   cmd->add_option("--acetabulum-distance", o->acetabulumDistance,
                   "With --labels or --reference: femoral head voxels or vertices within this of the hip bone give the "
                   "hip centre, mm (default 6)")

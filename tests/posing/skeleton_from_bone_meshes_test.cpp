@@ -1,6 +1,7 @@
 // Rigging from bone meshes (seed 001 §3.1): the cylinder fit of a hinge axis on synthetic arcs (exact),
-// the region of a mesh near another's surface, and the lower-body skeleton of the OpenSim Rajagopal 2016
-// meshes against the model's own joints (hip, knee, ankle centres; knee flexion axis).
+// the region of a mesh near another's surface, and the skeleton of the OpenSim Rajagopal 2016 meshes
+// against the model's own joints (hip, knee, ankle, lumbar, shoulder, elbow, wrist centres; knee and elbow
+// flexion axes).
 #include "vesalius/posing/cylinder_fit.h"
 #include "vesalius/posing/points_near.h"
 #include "vesalius/posing/skeleton_from_bone_meshes.h"
@@ -100,8 +101,25 @@ TEST(PointsNear, MeasuresToTheSurfaceOfAMesh) {
   EXPECT_EQ(posing::pointsNear(A, square.V, 11.5).rows(), 3);
 }
 
+// Counted from the nearest approach: 40 above the square, the nearest point (5, 5, 40) and those within 1
+// beyond it; the square's own points when they touch; nothing against an empty mesh.
+TEST(PointsNear, PointsNearestCountFromTheNearestApproach) {
+  TriMesh square;
+  square.V = (MatrixX3d(4, 3) << 0, 0, 0, 10, 0, 0, 10, 10, 0, 0, 10, 0).finished();
+  square.F = (MatrixX3i(2, 3) << 0, 1, 2, 0, 2, 3).finished();
+  const MatrixX3d A = (MatrixX3d(3, 3) << 5, 5, 40, 5, 5, 40.5, 20, 5, 41).finished();
+  const MatrixX3d near = posing::pointsNearest(A, square, 1.0);
+  ASSERT_EQ(near.rows(), 2);
+  EXPECT_EQ(near.row(1), A.row(1));
+  EXPECT_EQ(posing::pointsNearest(A, square, 0.1).rows(), 1);
+  EXPECT_EQ(posing::pointsNearest(A, square, 10.0).rows(), 3);  // (20, 5, 41) is 41.2 from the square
+  EXPECT_EQ(posing::pointsNearest(MatrixX3d(square.V), square, 1.0).rows(), 4);
+  EXPECT_EQ(posing::pointsNearest(A, TriMesh{}, 1.0).rows(), 0);
+}
+
 // A joint of the .osim as written: its parent offset frame's body, translation and orientation (body-fixed
-// X-Y-Z Euler angles), and the axis of its first rotation. readOpenSimModel composes these into body
+// X-Y-Z Euler angles), and the axis of its first rotation (a pin joint's z, a universal joint's x: the wrist's
+// flexion). readOpenSimModel composes these into body
 // frames and keeps no joint frames, so the test reads them from the text.
 struct OsimJoint {
   std::string parentBody;
@@ -132,12 +150,15 @@ OsimJoint osimJoint(const std::string& text, const std::string& name) {
   j.translation = vector3(between(text, f, "<translation>", "</translation>"));
   j.orientation = vector3(between(text, f, "<orientation>", "</orientation>"));
   const std::size_t r = text.find("<TransformAxis name=\"rotation1\">", at);
-  const bool pin = text.compare(text.rfind('<', at + 1), 9, "<PinJoint") == 0;
-  j.axis = pin || r == std::string::npos ? Eigen::Vector3d::UnitZ() : vector3(between(text, r, "<axis>", "</axis>"));
+  const std::size_t open = text.rfind('<', at + 1);
+  const bool pin = text.compare(open, 9, "<PinJoint") == 0, universal = text.compare(open, 15, "<UniversalJoint") == 0;
+  j.axis = universal ? Eigen::Vector3d::UnitX()
+           : pin || r == std::string::npos ? Eigen::Vector3d::UnitZ()
+                                           : vector3(between(text, r, "<axis>", "</axis>"));
   return j;
 }
 
-// The Rajagopal model's lower-body meshes placed in its default pose, mm LPS, and the model's joints.
+// The Rajagopal model's meshes placed in its default pose, mm LPS, and the model's joints.
 class Rajagopal : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -148,8 +169,6 @@ class Rajagopal : public ::testing::Test {
     meshes_ = new std::map<std::string, TriMesh>();
     const std::filesystem::path geometry = std::filesystem::path(kModel).parent_path() / "Geometry";
     for (const AttachedGeometry& g : model.geometry) {
-      const std::string body = model.bodies.joints[std::size_t(g.body)].name;
-      if (body != "pelvis" && body.rfind("femur", 0) && body.rfind("tibia", 0) && body.rfind("talus", 0)) continue;
       TriMesh mesh = io::readTriMesh((geometry / g.meshFile).string());
       mesh.V = io::transformPoints(mesh.V * g.scale.asDiagonal(), io::openSimToLps(), 1000.0);
       for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
@@ -210,6 +229,42 @@ TEST_F(Rajagopal, JointCentresAndKneeAxesMatchTheModel) {
   }
 }
 
+// Measured: lumbar 17.1 mm (16.1 below the model's back joint, which lies inside L5's body 15 mm above the
+// spine mesh's lowest vertex; ours is the L5/S1 disc; 39 spine and 13 sacrum vertices); shoulders 8.52 mm
+// (44 head vertices, radius 20.8, rms 1.36: the model's shoulder is not the head's centre, its head
+// vertices lie 12-26 mm from it), elbows 4.54 mm (71 vertices), wrists 2.98 mm, the same left and right
+// (the arm meshes are mirrors); elbow flexion axes 10.0° from the model's, wrist axes 26.4° from its
+// flexion axis (the styloid line is oblique to it, as the malleolar line is to the ankle's).
+TEST_F(Rajagopal, LumbarShoulderElbowAndWristMatchTheModel) {
+  const double lumbar = (result_->lumbar.centre - modelJoint("back").first).norm();
+  const Eigen::Vector3d lumbarOffset = result_->lumbar.centre - modelJoint("back").first;
+  std::cout << "lumbar " << lumbar << " mm (offset " << lumbarOffset.transpose() << "; " << result_->lumbar.spineVertices
+            << " spine, " << result_->lumbar.sacrumVertices << " sacrum vertices)\n";
+  EXPECT_LT(lumbar, 20.0);
+  EXPECT_LT(std::abs(lumbarOffset.x()), 0.5);  // on the sagittal plane
+  for (const auto& [side, joints, suffix] :
+       {std::tuple{"left", &result_->leftArm, "_l"}, std::tuple{"right", &result_->rightArm, "_r"}}) {
+    const double shoulder = (joints->humeralHead.centre - modelJoint(std::string("acromial") + suffix).first).norm();
+    const double elbow = (joints->elbow.point - modelJoint(std::string("elbow") + suffix).first).norm();
+    const double wrist = (joints->wristCentre - modelJoint(std::string("radius_hand") + suffix).first).norm();
+    const double elbowAxis = degreesBetweenLines(joints->elbow.axis, modelJoint(std::string("elbow") + suffix).second);
+    const double wristAxis = degreesBetweenLines(joints->wristAxis, modelJoint(std::string("radius_hand") + suffix).second);
+    std::cout << side << ": shoulder " << shoulder << " mm (" << joints->headVertices << " vertices, radius "
+              << joints->humeralHead.radius << ", rms " << joints->humeralHead.rmsResidual << "), elbow " << elbow << " mm ("
+              << joints->trochleaVertices << " vertices, radius " << joints->elbow.radius << ", rms "
+              << joints->elbow.rmsResidual << "), wrist " << wrist << " mm; elbow axis " << elbowAxis << "°, wrist axis "
+              << wristAxis << "°\n";
+    EXPECT_LT(shoulder, 10.0) << side;
+    EXPECT_LT(elbow, 6.0) << side;
+    EXPECT_LT(wrist, 4.0) << side;
+    EXPECT_LT(elbowAxis, 15.0) << side;
+    EXPECT_LT(wristAxis, 30.0) << side;
+    EXPECT_NEAR(joints->humeralHead.radius, 21.0, 2.0) << side;
+    EXPECT_GT(joints->elbow.axis.x(), 0.9) << side;  // flexion axes point left
+    EXPECT_GT(joints->wristAxis.x(), 0.8) << side;
+  }
+}
+
 // The model is symmetric about its sagittal plane (LPS x = 0), though its left femur mesh has 456
 // vertices and its right 132: mirrored left joints land within a few mm of the right ones and mirrored
 // left frames within a few degrees of the right frames.
@@ -236,14 +291,26 @@ TEST_F(Rajagopal, LeftAndRightMirrorEachOther) {
   EXPECT_LT(knee, 6.0);
   EXPECT_LT(ankle, 1e-6);  // tibias and fibulas are exact mirrors
   EXPECT_LT(worst, 3.0);
+  // The arm meshes are exact mirrors too (and the torso symmetric), so are the arms' joints and frames.
+  const posing::ArmJoints &la = result_->leftArm, &ra = result_->rightArm;
+  EXPECT_LT((M * la.humeralHead.centre - ra.humeralHead.centre).norm(), 1e-6);
+  EXPECT_LT((M * la.elbow.point - ra.elbow.point).norm(), 1e-6);
+  EXPECT_LT((M * la.wristCentre - ra.wristCentre).norm(), 1e-6);
+  for (const char* body : {"humerus", "ulna", "hand"}) {
+    const Eigen::Matrix3d Rl = M * world[std::size_t(s.find(std::string(body) + "_l"))].linear() * M;
+    const Eigen::Matrix3d Rr = world[std::size_t(s.find(std::string(body) + "_r"))].linear();
+    EXPECT_LT(Eigen::AngleAxisd(Rl.transpose() * Rr).angle() * 180 / M_PI, 1e-6) << body;
+  }
 }
 
-// Pelvis, then femur, tibia, talus per leg, parents first; every frame a rotation; the femur and tibia
-// z up their shafts, each joint at its bone's parent's tail.
-TEST_F(Rajagopal, FramesAreRotationsChainedDownEachLeg) {
+// Pelvis, then femur, tibia, talus per leg, then torso and humerus, ulna, hand per arm, parents first; every
+// frame a rotation; the femur and tibia z up their shafts, the torso's up the trunk, each joint at its bone's
+// parent's tail where the parent has one.
+TEST_F(Rajagopal, FramesAreRotationsChainedDownEachLimb) {
   const Skeleton& s = result_->skeleton;
-  const std::vector<std::string> names{"pelvis", "femur_l", "tibia_l", "talus_l", "femur_r", "tibia_r", "talus_r"};
-  const std::vector<int> parents{-1, 0, 1, 2, 0, 4, 5};
+  const std::vector<std::string> names{"pelvis", "femur_l", "tibia_l", "talus_l", "femur_r", "tibia_r", "talus_r",
+                                       "torso", "humerus_l", "ulna_l", "hand_l", "humerus_r", "ulna_r", "hand_r"};
+  const std::vector<int> parents{-1, 0, 1, 2, 0, 4, 5, 0, 7, 8, 9, 7, 11, 12};
   ASSERT_EQ(s.joints.size(), names.size());
   const std::vector<Eigen::Isometry3d> world = s.restWorld();
   for (std::size_t j = 0; j < names.size(); ++j) {
@@ -253,16 +320,20 @@ TEST_F(Rajagopal, FramesAreRotationsChainedDownEachLeg) {
     EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-12) << names[j];
     EXPECT_NEAR(R.determinant(), 1.0, 1e-12) << names[j];
     EXPECT_GT(R.col(0).x(), 0.8) << names[j];  // x: left (the tali's turned out by 31.6° with the malleoli)
-    if (parents[j] > 0) {  // a tibia at its femur's tail, a talus at its tibia's
-      const Eigen::Isometry3d& parent = world[std::size_t(parents[j])];
-      EXPECT_LT((parent * s.joints[std::size_t(parents[j])].tail - world[j].translation()).norm(), 1e-9) << names[j];
-    }
+    const int parent = parents[j];
+    if (parent > 0 && !s.joints[std::size_t(parent)].tail.isZero())  // a tibia at its femur's tail, ...
+      EXPECT_LT((world[std::size_t(parent)] * s.joints[std::size_t(parent)].tail - world[j].translation()).norm(), 1e-9)
+          << names[j];
   }
-  for (const char* name : {"femur_l", "tibia_l", "femur_r", "tibia_r"})
-    EXPECT_GT(world[std::size_t(s.find(name))].linear().col(2).z(), 0.95) << name;
+  for (const char* name : {"femur_l", "tibia_l", "femur_r", "tibia_r", "torso", "humerus_l", "ulna_l", "hand_l"})
+    EXPECT_GT(world[std::size_t(s.find(name))].linear().col(2).z(), 0.9) << name;  // the arms hang at rest
   EXPECT_LT((world[1].translation() - result_->left.femoralHead.centre).norm(), 1e-9);
   EXPECT_LT((world[2].translation() - result_->left.knee.point).norm(), 1e-9);
   EXPECT_LT((world[3].translation() - result_->left.ankleCentre).norm(), 1e-9);
+  EXPECT_LT((world[7].translation() - result_->lumbar.centre).norm(), 1e-9);
+  EXPECT_LT((world[8].translation() - result_->leftArm.humeralHead.centre).norm(), 1e-9);
+  EXPECT_LT((world[9].translation() - result_->leftArm.elbow.point).norm(), 1e-9);
+  EXPECT_LT((world[10].translation() - result_->leftArm.wristCentre).norm(), 1e-9);
 }
 
 TEST_F(Rajagopal, RefusesAMissingFemurNamingIt) {
@@ -279,6 +350,19 @@ TEST_F(Rajagopal, RefusesAMissingFemurNamingIt) {
   cut = *meshes_;
   cut.at("r_femur").V.col(2).array() -= 200.0;
   EXPECT_THROW(posing::skeletonFromBoneMeshes(cut, {}, "Rajagopal2016"), BadInput);
+}
+
+TEST_F(Rajagopal, RefusesAMissingArmOrHandBoneNamingIt) {
+  for (const char* mesh : {"humerus_lv", "radius_rv", "hat_spine", "lunate_lvs"}) {
+    std::map<std::string, TriMesh> cut = *meshes_;
+    cut.erase(mesh);
+    try {
+      posing::skeletonFromBoneMeshes(cut, {}, "Rajagopal2016");
+      ADD_FAILURE() << "no exception without " << mesh;
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find(mesh), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include "vesalius/core/box_tree.h"
 #include "vesalius/core/triangle_tree.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace vesalius::posing {
@@ -29,6 +31,18 @@ MatrixX3d pointsNear(const MatrixX3d& A, const TriMesh& B, double distance) {
   std::vector<Eigen::Index> near;
   for (Eigen::Index r = 0; r < A.rows(); ++r)
     if (closest[std::size_t(r)].squaredDistance <= distance * distance) near.push_back(r);
+  return A(near, Eigen::all);
+}
+
+MatrixX3d pointsNearest(const MatrixX3d& A, const TriMesh& B, double reach) {
+  if (A.rows() == 0 || B.F.rows() == 0) return MatrixX3d(0, 3);
+  const std::vector<ClosestPoint> closest = TriangleTree(B.V, B.F).closest(A);
+  double nearest = closest.front().squaredDistance;
+  for (const ClosestPoint& c : closest) nearest = std::min(nearest, c.squaredDistance);
+  const double within = std::sqrt(nearest) + reach;
+  std::vector<Eigen::Index> near;
+  for (Eigen::Index r = 0; r < A.rows(); ++r)
+    if (closest[std::size_t(r)].squaredDistance <= within * within) near.push_back(r);
   return A(near, Eigen::all);
 }
 

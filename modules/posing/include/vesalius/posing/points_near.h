@@ -18,4 +18,9 @@ MatrixX3d pointsNear(const MatrixX3d& A, const MatrixX3d& B, double distance);
 // (none if B has no triangles).
 MatrixX3d pointsNear(const MatrixX3d& A, const TriMesh& B, double distance);
 
+// A: #A by 3 points; B: a triangle mesh. Returns the rows of A within `reach` of B's surface beyond the
+// nearest of them, in order: the part of A facing B whether the two touch or stand apart (two bones of a
+// placed model need not meet; rig --reference's humeri stand off their glenoids). None if A or B is empty.
+MatrixX3d pointsNearest(const MatrixX3d& A, const TriMesh& B, double reach);
+
 }  // namespace vesalius::posing
