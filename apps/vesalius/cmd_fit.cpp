@@ -284,11 +284,18 @@ Start place(const FitCommandOptions& o, const TetMesh& templ, const fit::FitMark
 }
 
 void attachToBone(const FitCommandOptions& o, const TetMesh& templ, const Start& start, FitInputs& in) {
-  const fit::BoneAttachments a =
-      fit::boneAttachments(start.x0, templ.T, templ.V, io::readTriMesh(o.attachTo), o.attachRadius);
+  const TriMesh bone = io::readTriMesh(o.attachTo);
+  const fit::BoneAttachments a = fit::boneAttachments(start.x0, templ.T, templ.V, bone, o.attachRadius);
   in.points.attachmentMaterial = a.material;
   in.points.attachmentTargets = a.targets;
   requireThreeAttachments(in, o.attachTo, " (bone vertices within --attach-radius of the placed template)");
+  // A whole bone also holds the organ where other tissue lies between them (the test CT's gluteus medius
+  // on its whole hip bone: 1,226 attachments and 0.76 mm, on its insertion 310 and 0.23 mm).
+  if (countEdges(bone.F).boundary == 0)
+    std::cerr << "vesalius: note: " << o.attachTo << " is closed (a whole bone): all " << a.material.rows()
+              << " of its vertices within " << o.attachRadius
+              << " mm of the template hold it; to attach at the insertion only, give the bone's interface with the "
+                 "organ (vesalius surface --label BONE --shared --touching ORGAN)\n";
 }
 
 // ---- Measures ----

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace vesalius::test {
@@ -357,6 +358,7 @@ TEST_F(CliFit, AttachedToABoneUnderTheTemplate) {
   const CommandResult r = runVesalius(args);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectContains(r.out, "(plastic, attached)");
+  EXPECT_EQ(r.err.find("is closed (a whole bone)"), std::string::npos) << r.err;  // an open patch: no note
   const nlohmann::json m = nlohmann::json::parse(readText(report))["metrics"];
   EXPECT_EQ(m["attached"], true);
   EXPECT_GE(m["markers"]["attachments"].get<int>(), 3);
@@ -366,6 +368,25 @@ TEST_F(CliFit, AttachedToABoneUnderTheTemplate) {
   EXPECT_TRUE(isNumber(m["attachment_error_mm"]["max"]) && isNumber(m["attachment_error_mm"]["mean"]));
   EXPECT_TRUE(isNumber(m["icp_error_mm"]["after"]["mean"]) && isNumber(m["icp_error_mm"]["before"]["mean"]));
   EXPECT_EQ(m["icp_errors"].size(), 150u);
+}
+
+// A closed bone attaches every vertex within the radius, also where other tissue would lie between bone and
+// organ: the command says so, with the count, and points at the insertion.
+TEST_F(CliFit, AWholeBoneGetsANote) {
+  const TetMesh templ = io::readTetMesh(path("template.vtu"));
+  io::writeTriMesh(path("whole_bone.vtp"), surfaceOf(templ.V, tetBoundary(templ.T)), {WriteOptions{true}});
+  const std::string out = fresh("whole_bone.vtu"), report = fresh("whole_bone.json");
+  std::vector<std::string> args = fitArgs(out, {"--attach-to", path("whole_bone.vtp"), "--attach-radius", "1",
+                                                "--init", "none", "--iterations", "1", "--report", report});
+  args.erase(args.begin() + 5);  // --unattached
+  const CommandResult r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const long attachments = nlohmann::json::parse(readText(report))["metrics"]["markers"]["attachments"].get<long>();
+  const MatrixX3i F = tetBoundary(templ.T);
+  EXPECT_GE(attachments, long(std::set<int>(F.data(), F.data() + F.size()).size()));  // every surface vertex
+  expectContains(r.err, "vesalius: note: " + path("whole_bone.vtp") + " is closed (a whole bone): all " +
+                            std::to_string(attachments) + " of its vertices within 1 mm of the template hold it;");
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 void expectOneLine(const CommandResult& r, int code, const std::string& start, const std::string& fragment) {

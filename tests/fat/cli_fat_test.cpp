@@ -648,7 +648,10 @@ TEST(CliFatEdit, BodyPictureOrAClearRefusal) {
 }
 
 TEST(CliFatEdit, BadAmountsAreOneLineErrors) {
+  // Outputs of an earlier run would hide one written by a failing command.
   const std::string out = outputDir() + "/bad.nrrd";
+  fs::remove(out);
+  fs::remove_all(outputDir() + "/no_transfer");
   const auto run = [&](const std::string& name, const std::string& json) {
     return runVesalius({"fat", "edit", "--reference", fullBodyReference(), "--amounts", writeAmounts(name, json),
                         "--out", out, "--force", "--progress", "none"});
