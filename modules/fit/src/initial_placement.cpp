@@ -3,31 +3,13 @@
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"
 
-#include <Eigen/Eigenvalues>
+#include "vesalius/core/principal_axes.h"
 
 #include <cmath>
 #include <limits>
 
 namespace vesalius::fit {
 namespace {
-
-struct Frame {
-  Eigen::Vector3d centre;
-  Eigen::Matrix3d axes;  // columns: principal directions, right-handed
-  double spread;         // root of the total variance
-};
-
-Frame principalFrame(const MatrixX3d& P) {
-  Frame f;
-  f.centre = P.colwise().mean().transpose();
-  const MatrixX3d centred = P.rowwise() - f.centre.transpose();
-  const Eigen::Matrix3d cov = centred.transpose() * centred / double(P.rows());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  f.axes = eig.eigenvectors();
-  if (f.axes.determinant() < 0) f.axes.col(0) *= -1;
-  f.spread = std::sqrt(cov.trace());
-  return f;
-}
 
 // Similarity ICP from `start`: markers pulled to their closest surface points, the similarity refitted
 // to those pairs, until the RMS distance stops improving.
@@ -64,15 +46,15 @@ Placement placeTemplate(const TriMesh& surface, const MatrixX3d& templateLandmar
     return p;
   }
   if (icp.rows() < 3) throw BadInput("", "placing the template needs 3 landmark pairs or 3 ICP markers");
-  const Frame from = principalFrame(surface.V), to = principalFrame(icp);
+  const PrincipalAxes from = principalAxes(surface.V), to = principalAxes(icp);
   Placement best;
   best.rmsError = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3d& signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
                                       Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)}) {
     SimilarityTransform start;
     start.rotation = to.axes * signs.asDiagonal() * from.axes.transpose();
-    start.scale = to.spread / from.spread;
-    start.translation = to.centre - start.scale * start.rotation * from.centre;
+    start.scale = std::sqrt(to.variances.sum() / from.variances.sum());
+    start.translation = to.centroid - start.scale * start.rotation * from.centroid;
     const Placement p = icpFrom(surface, icp, start);
     if (p.rmsError < best.rmsError) best = p;
   }

@@ -2,31 +2,19 @@
 #include "vesalius/transfer/anatomy_checks.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/principal_axes.h"
 #include "vesalius/core/triangle_tree.h"
-
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <vector>
 
 namespace vesalius::transfer {
 
-namespace {
-
-// Principal axis (unit) and centroid of the rows of P.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> principalAxis(const Eigen::MatrixX3d& P) {
-  const Eigen::RowVector3d centroid = P.colwise().mean();
-  const Eigen::MatrixX3d centred = P.rowwise() - centroid;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
-  return {eigen.eigenvectors().col(2), centroid.transpose()};
-}
-
-}  // namespace
-
 double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int slices) {
   if (reference.rows() < 8 || slices < 5) throw UsageError("centre-line deviation needs 8 vertices and 5 slices");
   if (V.rows() != reference.rows()) throw UsageError("centre-line deviation: the moved bone has other vertices");
-  const auto [axis, centroid] = principalAxis(reference);
+  const PrincipalAxes referenceAxes = principalAxes(reference);
+  const Eigen::Vector3d axis = referenceAxes.axes.col(0), centroid = referenceAxes.centroid;
   const Eigen::VectorXd along = (reference.rowwise() - centroid.transpose()) * axis;
   const double low = along.minCoeff(), length = along.maxCoeff() - low;
   if (!(length > 0)) return 0;
@@ -44,7 +32,8 @@ double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int s
   if (centres.size() < 3) return 0;
   Eigen::MatrixX3d C(Eigen::Index(centres.size()), 3);
   for (std::size_t s = 0; s < centres.size(); ++s) C.row(Eigen::Index(s)) = centres[s].transpose();
-  const auto [lineAxis, linePoint] = principalAxis(C);
+  const PrincipalAxes line = principalAxes(C);
+  const Eigen::Vector3d lineAxis = line.axes.col(0), linePoint = line.centroid;
   const Eigen::VectorXd movedAlong = (V.rowwise() - linePoint.transpose()) * lineAxis;
   double worst = 0;
   for (Eigen::Index r = 0; r < C.rows(); ++r) {

@@ -2,8 +2,8 @@
 #include "vesalius/transfer/skeleton_placement.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/principal_axes.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -111,12 +111,11 @@ struct BoneEnds {
 
 BoneEnds boneEnds(const MatrixX3d& V, const Eigen::Vector3d& from, std::size_t bone) {
   if (V.rows() < 3) throw BadInput("", "digit joints: bone " + std::to_string(bone) + " has fewer than 3 vertices");
-  const Eigen::Vector3d centroid = V.colwise().mean().transpose();
-  const MatrixX3d centred = V.rowwise() - centroid.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
-  Eigen::Vector3d axis = eigen.eigenvectors().col(2);
+  const PrincipalAxes a = principalAxes(V);
+  const Eigen::Vector3d centroid = a.centroid;
+  Eigen::Vector3d axis = a.axes.col(0);
   if (axis.dot(centroid - from) < 0) axis = -axis;
-  const Eigen::VectorXd along = centred * axis;
+  const Eigen::VectorXd along = (V.rowwise() - centroid.transpose()) * axis;
   return {centroid + along.minCoeff() * axis, centroid + along.maxCoeff() * axis, centroid};
 }
 

@@ -1,6 +1,6 @@
 // The long axis of a bone from its points: the eigenvector of the largest eigenvalue of their covariance
 // (principal component analysis), one of the two directions seed 001 §3.1 estimates per bone
-// (bone_frame.h makes the frame).
+// (bone_frame.h makes the frame), with the checks a bone frame needs (core/principal_axes.h computes it).
 #pragma once
 
 #include "vesalius/core/mesh.h"
