@@ -94,9 +94,13 @@ struct SparseCholesky::Impl {
   // CHOLMOD prints nothing: its failures become the NumericalFailure below, and Newton solvers try
   // matrices that may not be positive definite on purpose. (print = 0 alone does not silence the
   // supernodal factorization's "not positive definite"; try_catch does, and keeps the status.)
-  Impl() {
+  explicit Impl(FillReducingOrdering ordering) {
     llt.cholmod().print = 0;
     llt.cholmod().try_catch = 1;
+    if (ordering == FillReducingOrdering::nestedDissection) {
+      llt.cholmod().nmethods = 1;
+      llt.cholmod().method[0].ordering = CHOLMOD_METIS;
+    }
   }
   SupernodalLlt llt;
   std::vector<int> outer, inner;  // pattern of the analysed matrix
@@ -104,7 +108,7 @@ struct SparseCholesky::Impl {
   Eigen::Index n = 0;
 };
 
-SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::SparseCholesky(FillReducingOrdering ordering) : impl_(std::make_unique<Impl>(ordering)) {}
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
@@ -156,5 +160,7 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
 }
 
 Eigen::Index SparseCholesky::size() const { return impl_->n; }
+
+double SparseCholesky::factorEntries() const { return impl_->analysed ? impl_->llt.cholmod().lnz : 0.0; }
 
 }  // namespace vesalius

@@ -13,9 +13,19 @@
 
 namespace vesalius {
 
+// How the rows are ordered before factoring, to limit the factor's fill.
+enum class FillReducingOrdering {
+  // CHOLMOD's default: AMD, and METIS only where AMD leaves much fill. The cheapest analysis.
+  automatic,
+  // METIS nested dissection always. On the tet adjacency Laplacian of a 38,921-tet liver the factor has
+  // 1.73M entries instead of AMD's 2.54M and solves 450 columns in a quarter less time, for 0.2 s more of
+  // analysis: for a factor that solves thousands of columns (the fitter's Z (L²)⁺ Zᵀ).
+  nestedDissection,
+};
+
 class SparseCholesky {
  public:
-  SparseCholesky();
+  explicit SparseCholesky(FillReducingOrdering ordering = FillReducingOrdering::automatic);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
@@ -31,6 +41,8 @@ class SparseCholesky {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
   Eigen::Index size() const;
+  // Entries of the factor's lower triangle (its fill) from the last analysis; 0 before any.
+  double factorEntries() const;
 
  private:
   struct Impl;

@@ -60,7 +60,8 @@ class SmoothnessBaseSolver {
 
   Eigen::Index tetCount_;
   Eigen::SparseMatrix<double> Lsc_;
-  SparseCholesky groundedCholesky_;  // of Lsc without row and column 0
+  // Of Lsc without row and column 0; nested dissection, since sandwich solves 6#C columns with it.
+  SparseCholesky groundedCholesky_{FillReducingOrdering::nestedDissection};
 };
 
 }  // namespace vesalius::fit
