@@ -5,14 +5,13 @@
 // field that folds nowhere.
 #include "run_command.h"
 #include "test_ct_bodies.h"
+#include "test_remeshed_surface.h"
 
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
-#include "vesalius/meshing/label_surface.h"
-#include "vesalius/meshing/mesh_volume.h"
 
 #include <nlohmann/json.hpp>
 
@@ -349,17 +348,7 @@ TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   const std::string dir = freshDir("full-body-remeshed");
   const ReferenceAnatomy reference = fullBodyReference(dir);
   const TriMesh thin = makeHumanShape("mh_male_young_thin_body.obj");
-  meshing::CoveringGridOptions grid;
-  grid.voxelSizeMm = 4;
-  grid.maxSize = Eigen::Vector3i(1000, 1000, 1000);
-  const Grid<std::uint8_t> inside = meshing::meshInsideMask(thin, meshing::coveringGrid({&thin}, grid));
-  LabelMap labels;
-  labels.labels = Grid<Label>(inside.geometry);
-  std::copy(inside.values.begin(), inside.values.end(), labels.labels.values.begin());
-  meshing::SurfaceOptions surface;
-  surface.targetFaces = 30000;
-  surface.avoidSelfIntersections = false;  // the target need not be fit for TetGen
-  const TriMesh target = meshing::labelSurface(labels, 1, surface);
+  const TriMesh target = test::remeshedSurface(thin, 4.0, 30000);
   ASSERT_NE(target.V.rows(), thin.V.rows());
   io::writeTriMesh(dir + "/target.obj", target);
   const nlohmann::json m = fullBodyTransfer(dir, dir + "/target.obj", "lps");

@@ -7,8 +7,8 @@
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
-#include "vesalius/meshing/label_surface.h"
-#include "vesalius/meshing/mesh_volume.h"
+
+#include "test_remeshed_surface.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -122,17 +122,7 @@ TEST(SkinRegistration, NeutralToMuscularFindsTheTrueCorrespondence) {
 // Measured: projection 61.8 mm (28.8 mm to the surface); registered 28.6 mm (0.64 mm).
 TEST(SkinRegistration, RemeshedTargetOfAnotherTopology) {
   const TriMesh source = body("neutral"), thin = body("male_young_thin");
-  meshing::CoveringGridOptions grid;
-  grid.voxelSizeMm = 4;
-  grid.maxSize = Eigen::Vector3i(1000, 1000, 1000);
-  const Grid<std::uint8_t> inside = meshing::meshInsideMask(thin, meshing::coveringGrid({&thin}, grid));
-  LabelMap labels;
-  labels.labels = Grid<Label>(inside.geometry);
-  std::copy(inside.values.begin(), inside.values.end(), labels.labels.values.begin());
-  meshing::SurfaceOptions surface;
-  surface.targetFaces = 30000;
-  surface.avoidSelfIntersections = false;  // the target need not be fit for TetGen
-  const TriMesh target = meshing::labelSurface(labels, 1, surface);
+  const TriMesh target = test::remeshedSurface(thin, 4.0, 30000);
   ASSERT_NE(target.V.rows(), thin.V.rows());
   const Errors baseline = projectionErrors(source, target, thin.V);
   report(baseline);

@@ -8,6 +8,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace vesalius::posing {
@@ -54,6 +56,13 @@ Eigen::Vector3d distalTip(const MatrixX3d& V, const Eigen::Vector3d& up, double 
   const Eigen::VectorXd height = V * up;
   const double lowest = height.minCoeff();
   return centroid(rowsWhere(V, [&](const Eigen::Vector3d& p) { return p.dot(up) <= lowest + tip; }));
+}
+
+// A hinge through two bony tips (the malleoli, the styloids): centre midway, axis through them to the left.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> axisThroughTips(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                            const Eigen::Vector3d& left) {
+  const Eigen::Vector3d axis = (a - b).normalized();
+  return {(a + b) / 2, axis.dot(left) < 0 ? Eigen::Vector3d(-axis) : axis};
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -106,9 +115,7 @@ void fitKneeAndAnkle(LegJoints& j, const Leg& leg, const Eigen::Vector3d& left, 
   const Eigen::Vector3d tibiaZ = principalAxis(leg.tibia.V, j.knee.point - centroid(leg.tibia.V));
   j.medialMalleolus = distalTip(leg.tibia.V, tibiaZ, o.malleolusTip);
   j.lateralMalleolus = distalTip(leg.fibula.V, tibiaZ, o.malleolusTip);
-  j.ankleCentre = (j.medialMalleolus + j.lateralMalleolus) / 2;
-  j.ankleAxis = (j.medialMalleolus - j.lateralMalleolus).normalized();
-  if (j.ankleAxis.dot(left) < 0) j.ankleAxis = -j.ankleAxis;
+  std::tie(j.ankleCentre, j.ankleAxis) = axisThroughTips(j.medialMalleolus, j.lateralMalleolus, left);
 }
 
 Chain legChain(const Leg& leg, const LegJoints& j) {
@@ -154,9 +161,7 @@ void fitForearm(ArmJoints& j, const Arm& arm, const Eigen::Vector3d& left, const
   const Eigen::Vector3d forearmZ = principalAxis(forearm.V, j.elbow.point - centroid(forearm.V));
   j.radialStyloid = distalTip(arm.radius.V, forearmZ, o.styloidTip);
   j.ulnarStyloid = distalTip(arm.ulna.V, forearmZ, o.styloidTip);
-  j.wristCentre = (j.radialStyloid + j.ulnarStyloid) / 2;
-  j.wristAxis = (j.radialStyloid - j.ulnarStyloid).normalized();
-  if (j.wristAxis.dot(left) < 0) j.wristAxis = -j.wristAxis;
+  std::tie(j.wristCentre, j.wristAxis) = axisThroughTips(j.radialStyloid, j.ulnarStyloid, left);
 }
 
 Chain armChain(const Arm& arm, const ArmJoints& j) {
