@@ -7,6 +7,20 @@
 
 namespace vesalius::cli {
 
+// With no points added on the surfaces (-Y) and TetGen's radius-edge bound 1.5, the tets are those the
+// surface triangles need, about 3-4 per surface face when each surface meets its budget (rig --labels of
+// the test CT: 3.3-3.5 tets per face over 6,000-7,700 faces; rig --reference at 8 mm: 3.1 at 2,900 faces).
+// The volume bound barely changes the count (docs/methods/tetrahedral-meshes.md), so the face budget is
+// what sets it: a quarter of the target, so that the count stays within 2x of it where a surface stops
+// above its budget (the CT's body tears below about 3,600 faces at 4 mm voxels). Larger budgets grow
+// faster than linearly: with surfaces a voxel apart, the smaller triangles make TetGen refine the gaps
+// (rig --reference at 8 mm with 6,100 faces: 6.5 tets per face).
+void budgetSurfaces(LabelRegionOptions& options, long targetTets) {
+  const long faces = targetTets / 4;
+  options.bodySurface.targetFaces = int(std::max<long>(1000, faces / 2));
+  options.labelFaces = std::max<long>(1, faces / 2);
+}
+
 Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, const std::vector<int>& rank) {
   Grid<Label> peeled = labels;
   const auto& n = labels.geometry.size;
@@ -61,6 +75,48 @@ segmentation::Mask largestFaceConnectedPart(const segmentation::Mask& mask) {
   return kept;
 }
 
+// Per label value, its voxels' faces towards another value or the grid's edge.
+std::vector<long> voxelFacesOfLabels(const Grid<Label>& labels) {
+  std::vector<long> faces(65536, 0);
+  const Eigen::Vector3i& n = labels.geometry.size;
+  const int step[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const Label l = labels.at(i, j, k);
+        if (l == 0) continue;
+        for (const auto& d : step) {
+          const int a = i + d[0], b = j + d[1], c = k + d[2];
+          if (!labels.geometry.contains(a, b, c) || labels.at(a, b, c) != l) ++faces[l];
+        }
+      }
+  return faces;
+}
+
+// Voxels of `id` outside its largest face-connected part set to 0.
+void keepLargestPart(Grid<Label>& labels, Label id) {
+  const segmentation::Mask mask = segmentation::maskOf(labels, id);
+  const segmentation::Mask kept = largestFaceConnectedPart(mask);
+  for (std::size_t v = 0; v < labels.values.size(); ++v)
+    if (mask.values[v] && !kept.values[v]) labels.values[v] = 0;
+}
+
+// The surfaces of `ids`, each decimated to its share of options.labelFaces (see LabelRegionOptions).
+std::vector<meshing::LabelSurface> budgetedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                                    const LabelRegionOptions& options) {
+  const std::vector<long> faces = voxelFacesOfLabels(map.labels);
+  long total = 0;
+  for (Label id : ids) total += faces[id];
+  std::vector<meshing::LabelSurface> surfaces;
+  for (Label id : ids) {
+    if (faces[id] == 0) continue;
+    meshing::SurfaceOptions surface = options.labelSurface;
+    surface.targetFaces = int(std::max<long>(options.minLabelFaces, options.labelFaces * faces[id] / total));
+    for (meshing::LabelSurface& s : meshing::labelSurfaces(map, {id}, surface)) surfaces.push_back(std::move(s));
+  }
+  return surfaces;
+}
+
 }  // namespace
 
 std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, const std::vector<Label>& ids,
@@ -87,7 +143,12 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
   } else {
     peeled.labels = peeledLabels(nullptr, map.labels, rank);
   }
-  for (meshing::LabelSurface& s : meshing::labelSurfaces(peeled, ids, options.labelSurface, progress))
+  if (options.largestPartOnly)
+    for (Label id : ids) keepLargestPart(peeled.labels, id);
+  std::vector<meshing::LabelSurface> surfaces = options.labelFaces > 0 && !ids.empty()
+                                                    ? budgetedSurfaces(peeled, ids, options)
+                                                    : meshing::labelSurfaces(peeled, ids, options.labelSurface, progress);
+  for (meshing::LabelSurface& s : surfaces)
     regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});
   return regions;
 }

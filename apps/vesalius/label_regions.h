@@ -32,7 +32,20 @@ struct LabelRegionOptions {
   bool solidBody = false;
   meshing::SurfaceOptions bodySurface;   // how the body is surfaced (e.g. decimated)
   meshing::SurfaceOptions labelSurface;  // how each label is surfaced
+  // With labelFaces > 0, the labels' surfaces share this many faces in proportion to their voxel faces
+  // (triangles of about one size on all of them), at least minLabelFaces each; labelSurface.targetFaces
+  // is then not used.
+  long labelFaces = 0;
+  int minLabelFaces = 100;
+  // Each label kept to its largest face-connected part after the peel (crumbs of a bone left by the peel
+  // or by voxels coarser than its plates, such as ribs at 8 mm, would each be a surface of a few faces).
+  bool largestPartOnly = false;
 };
+
+// Face budgets for a mesh of about targetTets tets made with TetGen's keepSurface (-Y), where the
+// surfaces' own triangles set the count: a quarter of targetTets faces in all, half on the body, half on
+// the labels (labelFaces; see the .cpp for the measurements).
+void budgetSurfaces(LabelRegionOptions& options, long targetTets);
 
 // The label voxels peeled as above: `labels` less its voxels next to a zero of `body` or the grid's edge
 // (with body null: neither) and, for a label of rank r, next to a label of larger rank. rank: per label

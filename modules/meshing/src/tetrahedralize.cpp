@@ -199,6 +199,11 @@ void checkTetgenInput(const std::vector<RegionSurface>& regions) {
   checkCrossings(regions, combine(regions));
 }
 
+bool surfacesCross(const std::vector<RegionSurface>& regions) {
+  const Combined c = combine(regions);
+  return !selfIntersections(c.all.V, c.all.F).empty();
+}
+
 TetMesh tetrahedralizeRegions(const std::vector<RegionSurface>& regions, const TetrahedralizeOptions& options) {
   checkOptions(options);
   checkEach(regions);

@@ -66,4 +66,7 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& opti
 // crossed by a triangle (of itself or of another surface).
 void checkTetgenInput(const std::vector<RegionSurface>& regions);
 
+// Whether a triangle of one of the surfaces crosses another triangle (of its own surface or another).
+bool surfacesCross(const std::vector<RegionSurface>& regions);
+
 }  // namespace vesalius::meshing
