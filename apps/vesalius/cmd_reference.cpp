@@ -161,7 +161,7 @@ bool isTrunkBody(const std::string& body) { return body == "pelvis" || body == "
 // which Rajagopal's torso carries with the spine and rib cage: §8 gives each trunk bone a map of its own,
 // and one trunk map scaled the skull with a muscular body's chest (determinant 1.9) into its face.
 std::string boneGroup(const std::string& body, const std::string& mesh) {
-  return body == "torso" && (mesh == "hat_skull" || mesh == "hat_jaw") ? "skull" : body;
+  return body == "torso" && (mesh == "hat_skull" || mesh == "hat_jaw") ? io::kSkullGroup : body;
 }
 
 // The full-body reference (seed 000 §3): the MakeHuman skin with the OpenSim model's bones and muscle

@@ -325,7 +325,7 @@ void runLabelRig(const RigOptions& o) {
 // `reference full-body` groups apart) with the torso. Other bodies are their joint (the patellae have
 // none: they follow the weights).
 std::string jointOfBody(const std::string& body) {
-  if (body == "skull") return "torso";
+  if (body == io::kSkullGroup) return "torso";
   for (const char* foot : {"calcn_", "toes_"})
     if (body.rfind(foot, 0) == 0) return "talus_" + body.substr(std::strlen(foot));
   if (body.rfind("radius_", 0) == 0) return "ulna_" + body.substr(std::strlen("radius_"));

@@ -21,6 +21,10 @@
 
 namespace vesalius::io {
 
+// The group of the full-body reference's skull and jaw, which `reference full-body` cuts out of OpenSim's
+// torso body (seed 000 §8 gives each trunk bone a map of its own) and `rig --reference` moves with the torso.
+inline constexpr const char* kSkullGroup = "skull";
+
 // Throws BadInput naming the file (reference.json or a mesh) for anything missing or malformed.
 ReferenceAnatomy readReferenceAnatomy(const std::string& folder);
 
