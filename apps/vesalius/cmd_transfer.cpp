@@ -7,7 +7,6 @@
 #include "thickness_input.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/grid_sampling.h"
 #include "vesalius/fat/erode_skin.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
@@ -73,24 +72,22 @@ GridGeometry fieldGrid(const ReferenceAnatomy& reference, double voxelSize) {
   return meshing::coveringGrid(meshes, grid);
 }
 
-// Rules R5, R6: the signed distance (mm, negative inside) of every tissue vertex to a closed body
-// surface, exact within 6 mm of it and clamped to ±6 mm beyond.
-std::vector<Eigen::VectorXd> signedDistances(const TriMesh& body, const std::vector<MatrixX3d>& tissues) {
+// Rules R5, R6: the signed distance (mm, negative inside) to a closed body surface on a 2 mm grid, exact
+// within 6 mm of it and clamped to ±6 mm beyond.
+constexpr double kDistanceBandMm = 6.0;
+Grid<float> bodySignedDistance(const TriMesh& body) {
   meshing::CoveringGridOptions grid;
   grid.voxelSizeMm = 2.0;
   grid.maxSize = Eigen::Vector3i(400, 400, 1000);
   meshing::SignedDistanceOptions band;
-  band.bandMm = 6.0;
-  const Grid<float> distance = meshing::meshSignedDistance(body, meshing::coveringGrid({&body}, grid), band);
+  band.bandMm = kDistanceBandMm;
+  return meshing::meshSignedDistance(body, meshing::coveringGrid({&body}, grid), band);
+}
+
+// The same at every tissue vertex.
+std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const std::vector<MatrixX3d>& tissues) {
   std::vector<Eigen::VectorXd> result;
-  for (const MatrixX3d& V : tissues) {
-    Eigen::VectorXd d(V.rows());
-    for (Eigen::Index r = 0; r < V.rows(); ++r) {
-      const Eigen::Vector3d index = distance.geometry.worldToIndex(V.row(r).transpose());
-      d[r] = insideVoxels(index, distance.geometry.size) ? sampleTrilinear(distance, index) : band.bandMm;
-    }
-    result.push_back(d);
-  }
+  for (const MatrixX3d& V : tissues) result.push_back(transfer::sampleSignedDistance(distance, V, kDistanceBandMm));
   return result;
 }
 
@@ -100,12 +97,12 @@ std::vector<Eigen::VectorXd> signedDistances(const TriMesh& body, const std::vec
 // for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
 // field's first-order error at the skin; `deepMm` counts those deeper apart.
-void reportInside(const TriMesh& body, const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result,
-                  double deepMm, io::Report& report) {
+void reportInside(const Grid<float>& bodyDistance, const ReferenceAnatomy& reference,
+                  const transfer::TransferredAnatomy& result, double deepMm, io::Report& report) {
   std::vector<MatrixX3d> rest;
   for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
-  const std::vector<Eigen::VectorXd> before = signedDistances(reference.skin, rest),
-                                     after = signedDistances(body, result.tissues);
+  const std::vector<Eigen::VectorXd> before = signedDistances(bodySignedDistance(reference.skin), rest),
+                                     after = signedDistances(bodyDistance, result.tissues);
   long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0;
   double worstPushedOut = 0;
   for (std::size_t t = 0; t < rest.size(); ++t) {
@@ -269,7 +266,12 @@ void runTransfer(const TransferOptions& o) {
   const GridGeometry grid = fieldGrid(reference, o.voxelSize);
   const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, grid);
   endStage("inside mask");
+  // Rule R6 in the bone registration: bones are kept inside the eroded skin (without fat, the report's
+  // target skin).
+  const Grid<float> erodedDistance = bodySignedDistance(eroded);
+  endStage("eroded skin distance");
   transfer::AnatomyTransferOptions transferOptions;
+  transferOptions.targetSkinDistance = &erodedDistance;
   transferOptions.field.laplace.solver =
       o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
   const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside, transferOptions);
@@ -291,7 +293,7 @@ void runTransfer(const TransferOptions& o) {
   report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
-  reportInside(body, reference, result, o.voxelSize, report);
+  reportInside(fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedDistance, reference, result, o.voxelSize, report);
   reportBones(reference, result, report);
   endStage("checks");
 

@@ -96,6 +96,26 @@ TEST(BoneRegistration, MapPlaneCarriesThePlane) {
     EXPECT_NEAR(p.normal.dot(map.apply(q) - p.point), 0.0, 1e-9);
 }
 
+TEST(BoneRegistration, AWeightCountsAsTheRowRepeated) {
+  // Weight 3 on the first 20 points gives the map fitted with those points three times over, for the
+  // free and the symmetric fit, though the attractors fit no map.
+  const MatrixX3d P = randomPoints(100, 8), Q = 1.2 * P + 3.0 * randomPoints(100, 9, 1.0);
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(100);
+  weights.head(20).setConstant(3);
+  MatrixX3d repeatedP(140, 3), repeatedQ(140, 3);
+  repeatedP << P, P.topRows(20), P.topRows(20);
+  repeatedQ << Q, Q.topRows(20), Q.topRows(20);
+  const AffineMap weighted = fitAffineMap(P, Q, weights), repeated = fitAffineMap(repeatedP, repeatedQ);
+  EXPECT_LT((weighted.A - repeated.A).norm(), 1e-9);
+  EXPECT_LT((weighted.t - repeated.t).norm(), 1e-9);
+  EXPECT_GT((weighted.A - fitAffineMap(P, Q).A).norm(), 1e-4);
+  const Plane reference = plane({3, 0, 0}, {1, 0.1, 0}), target = plane({-10, 4, 2}, {0.95, -0.2, 0.1});
+  const AffineMap symmetricWeighted = fitSymmetricAffineMap(P, Q, weights, reference, target);
+  const AffineMap symmetricRepeated = fitSymmetricAffineMap(repeatedP, repeatedQ, reference, target);
+  EXPECT_LT((symmetricWeighted.A - symmetricRepeated.A).norm(), 1e-9);
+  EXPECT_LT((symmetricWeighted.t - symmetricRepeated.t).norm(), 1e-9);
+}
+
 TEST(BoneRegistration, BadInputIsRefused) {
   const MatrixX3d P = randomPoints(10, 7);
   EXPECT_THROW(fitAffineMap(P, P.topRows(9)), BadInput);
@@ -105,4 +125,8 @@ TEST(BoneRegistration, BadInputIsRefused) {
   EXPECT_THROW(fitAffineMap(P, Q), BadInput);
   const MatrixX3d same = MatrixX3d::Constant(10, 3, 1.0);
   EXPECT_THROW(fitAffineMap(same, same), BadInput);
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(10);
+  EXPECT_THROW(fitAffineMap(P, P, weights.head(9)), BadInput);
+  weights[2] = 0;
+  EXPECT_THROW(fitAffineMap(P, P, weights), BadInput);
 }

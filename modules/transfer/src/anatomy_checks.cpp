@@ -2,6 +2,7 @@
 #include "vesalius/transfer/anatomy_checks.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/grid_sampling.h"
 #include "vesalius/core/principal_axes.h"
 #include "vesalius/core/triangle_tree.h"
 
@@ -51,6 +52,15 @@ double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plan
   double sum = 0;
   for (const ClosestPoint& c : tree.closest(mirrored)) sum += std::sqrt(c.squaredDistance);
   return sum / double(V.rows());
+}
+
+Eigen::VectorXd sampleSignedDistance(const Grid<float>& distance, const MatrixX3d& V, double offGrid) {
+  Eigen::VectorXd d(V.rows());
+  for (Eigen::Index r = 0; r < V.rows(); ++r) {
+    const Eigen::Vector3d index = distance.geometry.worldToIndex(V.row(r).transpose());
+    d[r] = insideVoxels(index, distance.geometry.size) ? sampleTrilinear(distance, index) : offGrid;
+  }
+  return d;
 }
 
 }  // namespace vesalius::transfer

@@ -11,25 +11,33 @@ namespace vesalius::transfer {
 
 namespace {
 
-void checkPairs(const MatrixX3d& P, const MatrixX3d& Q) {
-  if (P.rows() != Q.rows())
+void checkPairs(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights) {
+  if (P.rows() != Q.rows() || P.rows() != weights.size())
     throw BadInput("", "bone registration: " + std::to_string(P.rows()) + " bone points but " +
-                           std::to_string(Q.rows()) + " attractors");
+                           std::to_string(Q.rows()) + " attractors and " + std::to_string(weights.size()) + " weights");
   if (P.rows() < 4) throw BadInput("", "bone registration needs at least 4 points on a bone");
   if (!P.allFinite() || !Q.allFinite()) throw BadInput("", "bone registration: a point is not finite");
+  if (!weights.allFinite() || !(weights.minCoeff() > 0))
+    throw BadInput("", "bone registration: a weight is not positive and finite");
 }
 
-// The ridge-regularized least-squares linear map X ↦ Y of centred point sets (rows), see the header:
-// M = (Yᵀ X + λ s I)(Xᵀ X + λ I)⁻¹, for any dimension.
-Eigen::MatrixXd ridgeLinearFit(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
-  const Eigen::MatrixXd XX = X.transpose() * X;
+Eigen::RowVectorXd weightedMean(const Eigen::MatrixXd& X, const Eigen::VectorXd& weights) {
+  return weights.transpose() * X / weights.sum();
+}
+
+// The ridge-regularized weighted least-squares linear map X ↦ Y of centred point sets (rows), see the
+// header: M = (Yᵀ W X + λ s I)(Xᵀ W X + λ I)⁻¹, W = diag(weights), for any dimension.
+Eigen::MatrixXd ridgeLinearFit(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y, const Eigen::VectorXd& weights) {
+  const Eigen::VectorXd root = weights.cwiseSqrt();
+  const Eigen::MatrixXd WX = root.asDiagonal() * X, WY = root.asDiagonal() * Y;
+  const Eigen::MatrixXd XX = WX.transpose() * WX;
   const double trace = XX.trace();
   if (!(trace > 0)) throw BadInput("", "bone registration: all points of a bone coincide");
   const double lambda = 1e-6 * trace;
-  const double scale = std::sqrt(Y.squaredNorm() / X.squaredNorm());
+  const double scale = std::sqrt(WY.squaredNorm() / WX.squaredNorm());
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(X.cols(), X.cols());
   const Eigen::MatrixXd lhs = XX + lambda * I;
-  const Eigen::MatrixXd rhs = Y.transpose() * X + lambda * scale * I;
+  const Eigen::MatrixXd rhs = WY.transpose() * WX + lambda * scale * I;
   return lhs.ldlt().solve(rhs.transpose()).transpose();  // lhs is symmetric
 }
 
@@ -50,27 +58,36 @@ MatrixX3d AffineMap::apply(const MatrixX3d& P) const {
 }
 
 AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q) {
-  checkPairs(P, Q);
-  const Eigen::RowVector3d cp = P.colwise().mean(), cq = Q.colwise().mean();
+  return fitAffineMap(P, Q, Eigen::VectorXd::Ones(P.rows()));
+}
+
+AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights) {
+  checkPairs(P, Q, weights);
+  const Eigen::RowVector3d cp = weightedMean(P, weights), cq = weightedMean(Q, weights);
   AffineMap map;
-  map.A = ridgeLinearFit(P.rowwise() - cp, Q.rowwise() - cq);
+  map.A = ridgeLinearFit(P.rowwise() - cp, Q.rowwise() - cq, weights);
   map.t = cq.transpose() - map.A * cp.transpose();
   return map;
 }
 
 AffineMap fitSymmetricAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Plane& reference,
                                 const Plane& target) {
-  checkPairs(P, Q);
+  return fitSymmetricAffineMap(P, Q, Eigen::VectorXd::Ones(P.rows()), reference, target);
+}
+
+AffineMap fitSymmetricAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights,
+                                const Plane& reference, const Plane& target) {
+  checkPairs(P, Q, weights);
   const Eigen::Matrix3d Rr = planeFrame(reference), Rt = planeFrame(target);
   // Local coordinates: first axis the normal, origin on the plane.
   const Eigen::MatrixXd p = (P.rowwise() - reference.point.transpose()) * Rr;
   const Eigen::MatrixXd q = (Q.rowwise() - target.point.transpose()) * Rt;
   // Normal axis: x' = a x (no offset, or the plane would move).
-  const Eigen::MatrixXd a = ridgeLinearFit(p.col(0), q.col(0));
+  const Eigen::MatrixXd a = ridgeLinearFit(p.col(0), q.col(0), weights);
   // In-plane axes: a 2-D affine map.
-  const Eigen::RowVector2d cp = p.rightCols<2>().colwise().mean(), cq = q.rightCols<2>().colwise().mean();
+  const Eigen::RowVector2d cp = weightedMean(p.rightCols<2>(), weights), cq = weightedMean(q.rightCols<2>(), weights);
   const Eigen::MatrixXd B =
-      ridgeLinearFit(p.rightCols<2>().rowwise() - cp, q.rightCols<2>().rowwise() - cq);
+      ridgeLinearFit(p.rightCols<2>().rowwise() - cp, q.rightCols<2>().rowwise() - cq, weights);
   const Eigen::Vector2d b = cq.transpose() - B * cp.transpose();
   Eigen::Matrix3d local = Eigen::Matrix3d::Zero();
   local(0, 0) = a(0, 0);

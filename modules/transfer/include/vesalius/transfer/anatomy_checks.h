@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vesalius/core/anatomy.h"
+#include "vesalius/core/grid.h"
 #include "vesalius/core/mesh.h"
 
 #include <Eigen/Core>
@@ -19,5 +20,9 @@ double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int s
 // R2, trunk symmetric: the mean distance (mm) from the mesh's vertices mirrored in `plane` to the mesh.
 // 0 for a mesh that is its own mirror image.
 double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plane);
+
+// R5, R6: a signed distance grid (mm, negative inside, as meshing::meshSignedDistance makes) sampled
+// trilinearly at each row of V (#V by 3); `offGrid` where a row lies off the grid.
+Eigen::VectorXd sampleSignedDistance(const Grid<float>& distance, const MatrixX3d& V, double offGrid);
 
 }  // namespace vesalius::transfer

@@ -9,6 +9,8 @@
 //      (all of them if fewer than 4 are), as the field is extrapolated only a few cells beyond the skin;
 //      symmetric groups (the trunk) by maps symmetric about the sagittal
 //      plane, the target's plane being the image of the reference's under the trunk's joint affine fit.
+//      Given the target's eroded skin as a signed distance, the fit is reweighted so that the bones stay
+//      inside it (rule R6): the springs of vertices the map puts outside, or within a margin, grow stiffer.
 //   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
 //      every other tissue and every point not on a bone moves by it. Bone vertices less than a cell deep
 //      inside the reference skin do not fix the field: there the skin's value wins, as two fixed shells
@@ -31,6 +33,13 @@ namespace vesalius::transfer {
 
 struct AnatomyTransferOptions {
   DisplacementFieldOptions field;
+  // Rule R6 in step 2: the signed distance (mm, negative inside) to the target's eroded skin on a grid in
+  // target space (the caller's, not copied). Without it the maps are the plain least-squares fits.
+  const Grid<float>* targetSkinDistance = nullptr;
+  double insideMarginMm = 2.0;     // how deep inside a bone vertex is wanted, if its attractor is as deep
+  double insideWeightGrowth = 2.0; // a shallower vertex's spring is stiffened by this factor per pass
+  double insideMaxWeight = 1024;   // up to this stiffness (the others' is 1)
+  int insidePasses = 100;          // at most this many fits
 };
 
 struct BoneGroupMap {

@@ -8,6 +8,8 @@
 //   min over (A, t) of  Σ_i |A p_i + t − q_i|²        (p_i on the reference bone, q_i its attractor),
 // which we solve in closed form instead of integrating towards it (same result, no time step). We use the
 // bone mesh's vertices as the p_i rather than its voxels.
+// Springs of different stiffness w_i make it Σ_i w_i |A p_i + t − q_i|² (the weighted fits below; the
+// transfer stiffens those of vertices its map would put outside the target's skin, anatomy_transfer.h).
 //
 // "Transformations centered in the sagittal plane": a map T is symmetric about the plane when it commutes
 // with the mirror, S' T = T S, S the reference plane's mirror and S' the target's. In frames whose first
@@ -38,10 +40,16 @@ struct AffineMap {
 // P, Q: #P by 3 (#P >= 4, P not all on one point). Throws BadInput on mismatched rows, fewer than 4
 // points or non-finite values.
 AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q);
+// The same with a weight per point (#P, positive): min Σ_i w_i |A p_i + t − q_i|² (the springs of
+// different stiffness). Throws BadInput also on a weight that is not positive and finite.
+AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights);
 
-// The least-squares affine map that is symmetric from `reference` to `target` (see above).
+// The least-squares affine map that is symmetric from `reference` to `target` (see above), unweighted
+// and weighted.
 AffineMap fitSymmetricAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Plane& reference,
                                 const Plane& target);
+AffineMap fitSymmetricAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights,
+                                const Plane& reference, const Plane& target);
 
 // The plane `reference` is carried to by map: point A p + t, normal A^{-T} n normalized.
 Plane mapPlane(const AffineMap& map, const Plane& reference);
