@@ -86,6 +86,7 @@ struct PoseQuality {
   long inverted = 0;             // posed tets with signed volume <= 0 (inverted or flat)
   double minVolumeRatio = 0;     // smallest posed / rest tet volume
   double skinVolumeChangePct = std::numeric_limits<double>::quiet_NaN();  // posed / rest skin volume - 1, %
+  double tetVolumeChangePct = 0;  // posed / rest volume of the whole tet mesh - 1, %
   long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
   posing::UntangleResult untangle;  // the repair before these were measured (zeros with --no-untangle)
 };
@@ -119,6 +120,7 @@ class QualityMeter {
     const Eigen::ArrayXd volumes = tetVolumes(posedTets, T_).array();
     q.inverted = (volumes <= 0).count();
     q.minVolumeRatio = (volumes / restVolumes_.array()).minCoeff();
+    q.tetVolumeChangePct = 100 * (volumes.sum() / restVolumes_.sum() - 1);
     if (skin_ >= 0) q.skinVolumeChangePct = 100 * (enclosedVolume(carried[skin_], skinF_) / restSkinVolume_ - 1);
     for (std::size_t m = 0; m < carried.size(); ++m)
       q.leftOutside += leftOutside(posedTets, embeddings_[m], carried[m]);
@@ -156,13 +158,13 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
   writeAtomically(path, options, [&](const std::string& temporary) {
     std::ofstream out(temporary);
     out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside"
-           "\tuntangled_tets\tuntangle_max_move_mm\n";
+           "\tuntangled_tets\tuntangle_max_move_mm\ttet_volume_change_pct\n";
     out.precision(9);
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const PoseQuality& q = quality[p];
       out << (poses[p].frame < 0 ? "-" : std::to_string(poses[p].frame)) << '\t' << method << '\t' << q.inverted
           << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\t'
-          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\n';
+          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\t' << q.tetVolumeChangePct << '\n';
     }
     if (!out) throw BadInput(temporary, "cannot write");
   });

@@ -38,9 +38,7 @@ JointMap cmuToMakeHumanJointMap() {
       {"Head", "head"},
   };
   for (const auto& [cmu, mh] : std::vector<std::pair<std::string, std::string>>{{"Left", ".L"}, {"Right", ".R"}}) {
-    const std::string side = cmu.substr(0, 1);  // "L" / "R" in LHipJoint, RHipJoint
     map.pairs.insert(map.pairs.end(), {
-                                          {side + "HipJoint", "pelvis" + mh},
                                           {cmu + "UpLeg", "upperleg01" + mh},
                                           {cmu + "Leg", "lowerleg01" + mh},
                                           {cmu + "Foot", "foot" + mh},

@@ -21,15 +21,19 @@ Eigen::Vector3d boneDirection(const Skeleton& skeleton, int j) {
   return children == 1 ? offset : Eigen::Vector3d::Zero();
 }
 
-// Height of the roots above the lowest joint along `up`, at rest (all roots: a BVH has one).
-double hipHeight(const std::vector<Eigen::Isometry3d>& rest, const Skeleton& skeleton, const Eigen::Vector3d& up) {
-  double root = -std::numeric_limits<double>::infinity(), lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < rest.size(); ++j) {
-    const double h = rest[j].translation().dot(up);
-    if (skeleton.joints[j].parent < 0) root = std::max(root, h);
-    lowest = std::min(lowest, h);
-  }
-  return root - lowest;
+// Height of the lowest joint along `up` in a pose.
+double lowestJoint(const std::vector<Eigen::Isometry3d>& pose, const Eigen::Vector3d& up) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Isometry3d& joint : pose) lowest = std::min(lowest, joint.translation().dot(up));
+  return lowest;
+}
+
+// Height of the roots above the lowest joint along `up` in a pose (all roots: a BVH has one).
+double hipHeight(const std::vector<Eigen::Isometry3d>& pose, const Skeleton& skeleton, const Eigen::Vector3d& up) {
+  double root = -std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < pose.size(); ++j)
+    if (skeleton.joints[j].parent < 0) root = std::max(root, pose[j].translation().dot(up));
+  return root - lowestJoint(pose, up);
 }
 
 }  // namespace
@@ -59,8 +63,12 @@ Retargeter::Retargeter(const Skeleton& source, const Skeleton& target, const Joi
   if (matched == 0) throw BadInput(mapSource, "names no joint pair present in both skeletons");
   const Eigen::Vector3d up = options.sourceUp.normalized();
   const double sourceHeight = hipHeight(sourceRest_, source, up);
-  const double targetHeight = hipHeight(targetRest_, target, axes_ * up);
+  // The target's hip height in the source's rest pose, not its own: MakeHuman's A-pose legs stand lower
+  // than the same legs turned to CMU's T-pose.
+  const std::vector<Eigen::Isometry3d> targetInSourceRest = pose(sourceRest_);
+  const double targetHeight = hipHeight(targetInSourceRest, target, axes_ * up);
   if (sourceHeight > 0 && targetHeight > 0) rootScale_ = targetHeight / sourceHeight;
+  rootLift_ = (lowestJoint(targetRest_, axes_ * up) - lowestJoint(targetInSourceRest, axes_ * up)) * (axes_ * up);
 }
 
 std::vector<Eigen::Isometry3d> Retargeter::pose(const std::vector<Eigen::Isometry3d>& sourceWorld) const {
@@ -81,7 +89,7 @@ std::vector<Eigen::Isometry3d> Retargeter::pose(const std::vector<Eigen::Isometr
     posed[t].linear() = delta * alignment_[t] * targetRest_[t].linear();
     posed[t].translation() =
         joint.parent < 0
-            ? Eigen::Vector3d(targetRest_[t].translation() +
+            ? Eigen::Vector3d(targetRest_[t].translation() + rootLift_ +
                               rootScale_ * axes_ * (sourceWorld[s].translation() - sourceRest_[s].translation()))
             : Eigen::Vector3d(parent * joint.restLocal.translation());
   }

@@ -9,8 +9,10 @@
 // An unmapped joint keeps its rest rotation relative to its parent: R_t,posed = R_parent,posed · L_t,rest.
 // Every joint sits where its posed parent carries its rest offset (the target's own bone lengths, exactly);
 // a mapped root moves by the source root's displacement from rest, in target axes, times the ratio of
-// the two skeletons' hip heights (root above the lowest joint along up, at rest), which also converts
-// the units (CMU's 5.64 cm units to our millimetres).
+// the two skeletons' hip heights (root above the lowest joint along up, both in the source's rest pose),
+// which also converts the units (CMU's 5.64 cm units to our millimetres), and is lifted so that in the
+// source's rest pose the target's lowest joint stands on the target's rest floor (MakeHuman's A-pose legs
+// reach lower than the same legs turned to CMU's T-pose).
 //
 // Why world deltas with an alignment: the two rest poses differ (CMU's rest is a T-pose with the legs
 // apart, MakeHuman's an A-pose). Copying local rotations (or world deltas alone) reproduces the source's
@@ -61,6 +63,7 @@ class Retargeter {
   std::vector<Eigen::Matrix3d> alignment_;  // per target joint: A_t
   Eigen::Matrix3d axes_;
   double rootScale_ = 1.0;
+  Eigen::Vector3d rootLift_ = Eigen::Vector3d::Zero();  // puts the target's feet on its rest floor in the source's rest
   std::vector<std::string> skipped_;
 };
 
