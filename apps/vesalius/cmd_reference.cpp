@@ -1,9 +1,9 @@
 // vesalius reference torso: a reference anatomy for anatomy transfer (seed 000 §3, Fig. 2.c) built from a
 // labelled CT: the body's surface as the skin, every label of the segmentation as a bone, muscle or organ.
+#include "body_distance.h"
 #include "common.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/grid_sampling.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/makehuman_uv.h"
@@ -12,9 +12,9 @@
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/meshing/label_surface.h"
-#include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/body_frame.h"
 #include "vesalius/transfer/bones_inside_skin.h"
 #include "vesalius/transfer/skeleton_placement.h"
@@ -172,20 +172,17 @@ std::string boneGroup(const std::string& body, const std::string& mesh) {
 }
 
 // Signed distances to a closed skin (transfer::SkinDistanceFunction): distance and outward direction from
-// the closest point on it, the side from its signed distance field on a 2 mm grid (as the transfer
-// report's rules R5, R6 measure it).
+// the closest point on it, the side from the signed distance field the transfer report's rules R5, R6
+// use (body_distance.h).
 transfer::SkinDistanceFunction skinDistances(const TriMesh& skin) {
-  meshing::CoveringGridOptions grid;
-  grid.voxelSizeMm = 2.0;
-  grid.maxSize = Eigen::Vector3i(400, 400, 1000);
-  const auto field = std::make_shared<const Grid<float>>(meshing::meshSignedDistance(skin, meshing::coveringGrid({&skin}, grid)));
+  const auto field = std::make_shared<const Grid<float>>(bodySignedDistance(skin));
   const auto tree = std::make_shared<const TriangleTree>(skin.V, skin.F);
   return [field, tree](const MatrixX3d& P) {
     const std::vector<ClosestPoint> closest = tree->closest(P);
+    const Eigen::VectorXd sampled = transfer::sampleSignedDistance(*field, P, kDistanceBandMm);
     transfer::SkinDistances d{Eigen::VectorXd(P.rows()), MatrixX3d::Zero(P.rows(), 3)};
     for (Eigen::Index r = 0; r < P.rows(); ++r) {
-      const Eigen::Vector3d index = field->geometry.worldToIndex(P.row(r).transpose());
-      const double side = insideVoxels(index, field->geometry.size) && sampleTrilinear(*field, index) < 0 ? -1.0 : 1.0;
+      const double side = sampled[r] < 0 ? -1.0 : 1.0;
       const Eigen::Vector3d away = P.row(r).transpose() - closest[std::size_t(r)].point;
       d.distance[r] = side * away.norm();
       if (away.norm() > 1e-9) d.outward.row(r) = side * away.normalized().transpose();

@@ -2,6 +2,7 @@
 // (§4), erosion by the fat thickness (§5) and registration of the lean reference onto the eroded skin,
 // Laplace interpolation (§7), bone registration (§8), final interpolation; with the anatomical rules
 // measured in the report.
+#include "body_distance.h"
 #include "bone_fat_amounts.h"
 #include "common.h"
 #include "thickness_input.h"
@@ -70,18 +71,6 @@ GridGeometry fieldGrid(const ReferenceAnatomy& reference, double voxelSize) {
   grid.marginMm = 3 * voxelSize;
   grid.maxSize = Eigen::Vector3i(400, 400, 800);
   return meshing::coveringGrid(meshes, grid);
-}
-
-// Rules R5, R6: the signed distance (mm, negative inside) to a closed body surface on a 2 mm grid, exact
-// within 6 mm of it and clamped to ±6 mm beyond.
-constexpr double kDistanceBandMm = 6.0;
-Grid<float> bodySignedDistance(const TriMesh& body) {
-  meshing::CoveringGridOptions grid;
-  grid.voxelSizeMm = 2.0;
-  grid.maxSize = Eigen::Vector3i(400, 400, 1000);
-  meshing::SignedDistanceOptions band;
-  band.bandMm = kDistanceBandMm;
-  return meshing::meshSignedDistance(body, meshing::coveringGrid({&body}, grid), band);
 }
 
 // The same at every tissue vertex.
