@@ -17,9 +17,13 @@ namespace vesalius::cli {
 
 namespace {
 
-posing::RetargetOptions retargetOptions(bool motionLps) {
+// A foreign motion (+Y up) starts where the rig stands: its first frame is the stance. Our own
+// skeleton.bvh (mm LPS) already holds the rig's positions and is replayed as written.
+posing::RetargetOptions retargetOptions(bool motionLps, const Motion& motion) {
   posing::RetargetOptions options;
-  if (!motionLps) options.sourceAxes = io::yUpToLps();
+  if (motionLps) return options;
+  options.sourceAxes = io::yUpToLps();
+  if (motion.frameCount() > 0) options.sourceStance = motion.worldPose(0);
   return options;
 }
 
@@ -36,7 +40,7 @@ posing::JointMap motionJointMap(const std::string& mapPath, const Skeleton& sour
 RetargetedMotion::RetargetedMotion(const std::string& bvhPath, const std::string& mapPath, bool motionLps,
                                    const Skeleton& rig)
     : motion_(io::readBvh(bvhPath)),
-      retargeter_(motion_.skeleton, rig, motionJointMap(mapPath, motion_.skeleton, rig), retargetOptions(motionLps),
+      retargeter_(motion_.skeleton, rig, motionJointMap(mapPath, motion_.skeleton, rig), retargetOptions(motionLps, motion_),
                   mapPath.empty() ? "default joint map" : mapPath) {}
 
 std::vector<Eigen::Isometry3d> RetargetedMotion::pose(int frame) const {

@@ -122,16 +122,50 @@ TEST(Retarget, ThePelvisStaysOnePieceWithTheRoot) {
   EXPECT_LT(worst, 1e-9);  // mm; before, the halves' alignment moved the hips
 }
 
+TEST(Retarget, AMotionFromItsFirstFrameStartsOnTheRig) {
+  // CMU's rest is at the studio origin: frame 0 stands 1.2 m from it. With the first frame as the stance
+  // the motion starts where the rig stands, its feet on the rig's floor.
+  const Motion& motion = test::cmuMotion();
+  const Skeleton& target = test::makeHumanSkeletonLps();
+  posing::RetargetOptions options = cmuOntoLps();
+  const Retargeter fromRest(motion.skeleton, target, posing::cmuToMakeHumanJointMap(), options);
+  options.sourceStance = motion.worldPose(0);
+  const Retargeter fromFirstFrame(motion.skeleton, target, posing::cmuToMakeHumanJointMap(), options);
+  const auto rest = target.restWorld();
+  const int root = target.find("root");
+  const auto first = fromFirstFrame.pose(motion.worldPose(0));
+  const Eigen::Vector3d moved = first[root].translation() - rest[root].translation();
+  EXPECT_LT(moved.head<2>().norm(), 1e-9);  // L and P: where the rig stands
+  double lowestRest = std::numeric_limits<double>::infinity(), lowestFirst = lowestRest;
+  for (std::size_t j = 0; j < rest.size(); ++j) {
+    lowestRest = std::min(lowestRest, rest[j].translation().z());
+    lowestFirst = std::min(lowestFirst, first[j].translation().z());
+  }
+  std::printf("frame 0 from its first frame: root moved %.1f mm up, lowest joint %.1g mm above the rest floor; "
+              "from the BVH rest the root is %.0f mm from the rig's\n",
+              moved.z(), lowestFirst - lowestRest,
+              (fromRest.pose(motion.worldPose(0))[root].translation() - rest[root].translation()).norm());
+  EXPECT_LT(std::abs(lowestFirst - lowestRest), 1e-9);
+  // Later frames move by the source's displacement from frame 0, scaled.
+  const int later = 1750;
+  const Eigen::Vector3d a = fromFirstFrame.pose(motion.worldPose(later))[root].translation() - first[root].translation();
+  const Eigen::Vector3d b = fromFirstFrame.rootScale() * io::yUpToLps() *
+                            (motion.worldPose(later).front().translation() - motion.worldPose(0).front().translation());
+  EXPECT_LT((a - b).norm(), 1e-9);
+}
+
 TEST(Retarget, CmuMotionOnMakeHumanKeepsBoneLengthsAndFeetOnTheFloor) {
   const Motion& motion = test::cmuMotion();
   const Skeleton& target = test::makeHumanSkeletonLps();
-  const Retargeter retarget(motion.skeleton, target, posing::cmuToMakeHumanJointMap(), cmuOntoLps());
+  posing::RetargetOptions options = cmuOntoLps();
+  options.sourceStance = motion.worldPose(0);  // as `vesalius pose` plays it
+  const Retargeter retarget(motion.skeleton, target, posing::cmuToMakeHumanJointMap(), options);
   EXPECT_TRUE(retarget.skipped().empty());
   // Hip heights: CMU ~16.8 units (~0.95 m), MakeHuman ~0.9 m: about 55 mm per CMU unit.
   EXPECT_GT(retarget.rootScale(), 45.0);
   EXPECT_LT(retarget.rootScale(), 65.0);
   const auto rest = target.restWorld();
-  const auto sourceRest = motion.skeleton.restWorld();
+  const auto sourceStance = motion.worldPose(0);
   auto lowest = [](const std::vector<Eigen::Isometry3d>& pose, const Skeleton& s, const std::vector<std::string>& names,
                    const Eigen::Vector3d& up) {
     double h = std::numeric_limits<double>::infinity();
@@ -141,7 +175,7 @@ TEST(Retarget, CmuMotionOnMakeHumanKeepsBoneLengthsAndFeetOnTheFloor) {
   const std::vector<std::string> targetFeet{"foot.L", "foot.R", "toe1-1.L", "toe1-1.R"};
   const std::vector<std::string> sourceFeet{"LeftFoot", "RightFoot", "LeftToeBase", "RightToeBase"};
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ(), sourceUp = Eigen::Vector3d::UnitY();
-  const double floor = lowest(rest, target, targetFeet, up), sourceFloor = lowest(sourceRest, motion.skeleton, sourceFeet, sourceUp);
+  const double floor = lowest(rest, target, targetFeet, up), sourceFloor = lowest(sourceStance, motion.skeleton, sourceFeet, sourceUp);
   double worstLength = 0, worstFloor = 0;
   for (int frame = 0; frame < motion.frameCount(); frame += 11) {
     const auto posed = retarget.pose(motion.worldPose(frame));
@@ -159,10 +193,9 @@ TEST(Retarget, CmuMotionOnMakeHumanKeepsBoneLengthsAndFeetOnTheFloor) {
   }
   EXPECT_LT(worstLength, 1e-9);
   std::printf("lowest foot joint, target vs scaled source: worst %.1f mm\n", worstFloor);
-  // Measured 70 mm (different leg and foot proportions; the target lifts its feet 770-780 mm in the jumps'
-  // stance where the source's scaled lift is 783-812). 36 mm when MakeHuman's pelvis halves were aligned to
-  // CMU's hip offsets, which moved the hips out of the skin's (ThePelvisStaysOnePieceWithTheRoot).
-  EXPECT_LT(worstFloor, 80.0);
+  // Measured 33.9 mm (different leg proportions); 70 mm with the source's rest as the stance (its legs
+  // apart), 36 mm when MakeHuman's pelvis halves were aligned to CMU's hip offsets, which moved the hips.
+  EXPECT_LT(worstFloor, 45.0);
 }
 
 TEST(Retarget, RefusesAMapMatchingNothingAndPosesOfTheWrongSize) {

@@ -61,14 +61,18 @@ Retargeter::Retargeter(const Skeleton& source, const Skeleton& target, const Joi
       alignment_[t] = Eigen::Quaterniond::FromTwoVectors(dt, ds).toRotationMatrix();
   }
   if (matched == 0) throw BadInput(mapSource, "names no joint pair present in both skeletons");
+  sourceStance_ = options.sourceStance.value_or(sourceRest_);
+  if (sourceStance_.size() != sourceRest_.size())
+    throw UsageError("retargeting: a stance of " + std::to_string(sourceStance_.size()) + " joints for a skeleton of " +
+                     std::to_string(sourceRest_.size()));
+  // Hip heights and the floor compared in the stance, not each in its own rest: MakeHuman's A-pose legs
+  // do not stand as CMU's T-pose legs apart do. With no lift yet, pose() puts our root at its rest place.
   const Eigen::Vector3d up = options.sourceUp.normalized();
-  const double sourceHeight = hipHeight(sourceRest_, source, up);
-  // The target's hip height in the source's rest pose, not its own: MakeHuman's A-pose legs stand lower
-  // than the same legs turned to CMU's T-pose.
-  const std::vector<Eigen::Isometry3d> targetInSourceRest = pose(sourceRest_);
-  const double targetHeight = hipHeight(targetInSourceRest, target, axes_ * up);
+  const std::vector<Eigen::Isometry3d> targetInStance = pose(sourceStance_);
+  const double sourceHeight = hipHeight(sourceStance_, source, up);
+  const double targetHeight = hipHeight(targetInStance, target, axes_ * up);
   if (sourceHeight > 0 && targetHeight > 0) rootScale_ = targetHeight / sourceHeight;
-  rootLift_ = (lowestJoint(targetRest_, axes_ * up) - lowestJoint(targetInSourceRest, axes_ * up)) * (axes_ * up);
+  rootLift_ = (lowestJoint(targetRest_, axes_ * up) - lowestJoint(targetInStance, axes_ * up)) * (axes_ * up);
 }
 
 std::vector<Eigen::Isometry3d> Retargeter::pose(const std::vector<Eigen::Isometry3d>& sourceWorld) const {
@@ -90,7 +94,8 @@ std::vector<Eigen::Isometry3d> Retargeter::pose(const std::vector<Eigen::Isometr
     posed[t].translation() =
         joint.parent < 0
             ? Eigen::Vector3d(targetRest_[t].translation() + rootLift_ +
-                              rootScale_ * axes_ * (sourceWorld[s].translation() - sourceRest_[s].translation()))
+                              rootScale_ * axes_ *
+                                  (sourceWorld[s].translation() - sourceStance_[s].translation()))
             : Eigen::Vector3d(parent * joint.restLocal.translation());
   }
   return posed;

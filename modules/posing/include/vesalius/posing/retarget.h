@@ -8,11 +8,11 @@
 //   R_t,posed = D · A_t · R_t,rest      A_t: the rest-direction alignment below
 // An unmapped joint keeps its rest rotation relative to its parent: R_t,posed = R_parent,posed · L_t,rest.
 // Every joint sits where its posed parent carries its rest offset (the target's own bone lengths, exactly);
-// a mapped root moves by the source root's displacement from rest, in target axes, times the ratio of
-// the two skeletons' hip heights (root above the lowest joint along up, both in the source's rest pose),
-// which also converts the units (CMU's 5.64 cm units to our millimetres), and is lifted so that in the
-// source's rest pose the target's lowest joint stands on the target's rest floor (MakeHuman's A-pose legs
-// reach lower than the same legs turned to CMU's T-pose).
+// a mapped root moves by the source root's displacement from its stance (options.sourceStance, by default
+// the source's rest), in target axes, times the ratio of the two skeletons' hip heights (root above the
+// lowest joint along up, both in that stance), which also converts the units (CMU's 5.64 cm units to our
+// millimetres), and is lifted so that in the stance the target's lowest joint stands on the target's rest
+// floor (MakeHuman's A-pose legs do not reach as low as the same legs turned to CMU's rest).
 //
 // Why world deltas with an alignment: the two rest poses differ (CMU's rest is a T-pose with the legs
 // apart, MakeHuman's an A-pose). Copying local rotations (or world deltas alone) reproduces the source's
@@ -30,6 +30,7 @@
 
 #include <Eigen/Geometry>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct RetargetOptions {
   Eigen::Matrix3d sourceAxes = Eigen::Matrix3d::Identity();  // C: source world axes to target world axes
   Eigen::Vector3d sourceUp = Eigen::Vector3d::UnitY();       // up in source axes (BVH: +Y), for hip heights
   bool alignRestDirections = true;                           // A_t above; off gives A_t = I
+  // The source's stance (#source-joints world transforms, as Motion::worldPose gives): the pose in which
+  // ours stands at its rest place on its rest floor, and in which the hip heights are compared; the
+  // source's rest if not given. A motion capture's rest is at its studio's origin (CMU's Hips at 0, the
+  // subject 1.2 m from it in frame 0, legs apart); playback passes the first frame, so a motion starts
+  // where the rig stands.
+  std::optional<std::vector<Eigen::Isometry3d>> sourceStance;
 };
 
 class Retargeter {
@@ -64,6 +71,7 @@ class Retargeter {
   Eigen::Matrix3d axes_;
   double rootScale_ = 1.0;
   Eigen::Vector3d rootLift_ = Eigen::Vector3d::Zero();  // puts the target's feet on its rest floor in the source's rest
+  std::vector<Eigen::Isometry3d> sourceStance_;          // options.sourceStance or the source's rest
   std::vector<std::string> skipped_;
 };
 
