@@ -4,9 +4,10 @@
 // by the seed's baseline, Jacobi-preconditioned CG (`--laplace-solver cg`), both to the relative residual
 // 1e-8. The program is timed as a user runs it: wall time, and CPU time of all its threads because the
 // machine is shared (1-minute load average before and after each case). Stage times come from its
-// `--report` ("checks": the report's rules as numbers, R1, R2, R5, R6 and the Jacobian); "rest" is the
-// wall time outside them (start-up, the fat file, the report). The two runs' anatomies are compared
-// vertex by vertex: the solvers stop at the same residual, so they should agree closely.
+// `--report` ("checks": the report's rules as numbers, R1, R2, R5, R6 and the Jacobian), one column per stage
+// or pair of stages, so that the columns add up to the total; "rest" is the wall time outside them (start-up,
+// the fat file, the report). A stage the table does not know stops the bench. The two runs' anatomies are
+// compared vertex by vertex: the solvers stop at the same residual, so they should agree closely.
 // Cases: torso (the torso reference of the test CT into its own skin, 4 mm field), torso-fat (into the same
 // body dilated 8 mm, its fat layer given per vertex: the R3 integration test), full-body (MakeHuman's
 // neutral body with Rajagopal's bones into the thin MakeHuman body, 6 mm field). The inputs are made
@@ -114,6 +115,23 @@ double stage(const Transfer& t, const std::string& name) {
 
 double fields(const Transfer& t) { return stage(t, "skin field") + stage(t, "final field"); }
 
+// The report's stages that the table's columns show, in their order.
+const std::vector<std::string> kShownStages{"reading", "skin registration", "erosion", "sub-fat registration",
+                                            "inside mask", "eroded skin distance", "skin field", "bone registration",
+                                            "final field", "checks", "writing"};
+
+// Exits if the report of `t` has a stage that no column shows: its time would be in no column and the
+// columns would not add up to the total.
+void requireShownStages(const Transfer& t) {
+  for (const nlohmann::json& s : t.report["stages"]) {
+    const std::string name = s["name"].get<std::string>();
+    if (std::find(kShownStages.begin(), kShownStages.end(), name) != kShownStages.end()) continue;
+    std::fprintf(stderr, "bench_transfer_whole: %s.json has the stage \"%s\", which the table has no column for\n",
+                 t.out.c_str(), name.c_str());
+    std::exit(1);
+  }
+}
+
 // The largest distance (mm) between the same vertex or point of two transferred anatomies.
 double largestDifference(const std::string& a, const std::string& b) {
   const ReferenceAnatomy x = io::readReferenceAnatomy(a), y = io::readReferenceAnatomy(b);
@@ -129,10 +147,10 @@ void printRow(const std::string& name, const char* solver, const Transfer& t) {
   double staged = 0;
   for (const nlohmann::json& s : t.report["stages"]) staged += s["seconds"].get<double>();
   const nlohmann::json& it = t.report["metrics"]["laplace_iterations"];
-  std::printf("| %s | %s | %.1f s | %.1f s | %.1f s | %.1f s (%d/%d/%d it) | %.2f s | %.1f s (%d/%d/%d it) | %.1f s | "
-              "%.1f s | %.1f s | **%.1f s** | %.1f s | %.0f MB |\n",
+  std::printf("| %s | %s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s (%d/%d/%d it) | %.2f s | %.1f s (%d/%d/%d it) | "
+              "%.1f s | %.1f s | %.1f s | **%.1f s** | %.1f s | %.0f MB |\n",
               name.c_str(), solver, stage(t, "skin registration"), stage(t, "erosion") + stage(t, "sub-fat registration"),
-              stage(t, "inside mask"), stage(t, "skin field"),
+              stage(t, "inside mask"), stage(t, "eroded skin distance"), stage(t, "skin field"),
               it["skin_field"][0].get<int>(), it["skin_field"][1].get<int>(), it["skin_field"][2].get<int>(),
               stage(t, "bone registration"), stage(t, "final field"), it["final_field"][0].get<int>(),
               it["final_field"][1].get<int>(), it["final_field"][2].get<int>(), stage(t, "checks"),
@@ -157,13 +175,15 @@ int main(int argc, char** argv) {
   if (cases.empty()) cases = {"torso", "torso-fat", "full-body"};
   fs::create_directories(work);
   for (const std::string& name : cases) caseArguments(name, work);  // the inputs, before any timing
-  std::printf("| case | Laplace solver | registration | erosion + sub-fat registration | inside mask | skin field | "
-              "bones | final field | checks | reading + writing | rest | total wall | CPU | peak memory |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| case | Laplace solver | registration | erosion + sub-fat registration | inside mask | "
+              "eroded skin distance | skin field | bones | final field | checks | reading + writing | rest | "
+              "total wall | CPU | peak memory |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> ratios;
   for (const std::string& name : cases) {
     const double loadBefore = bench::loadAverage();
     const Transfer mg = transfer(name, "mg", work), cg = transfer(name, "cg", work);
+    requireShownStages(mg);
+    requireShownStages(cg);
     printRow(name, "MG-PCG", mg);
     printRow(name, "Jacobi-CG", cg);
     char line[512];
