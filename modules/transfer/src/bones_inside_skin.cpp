@@ -65,7 +65,9 @@ void addAnchors(const MatrixX3d& anchors, const Change& change, const Eigen::Vec
   for (Eigen::Index a = 0; a < anchors.rows(); ++a) {
     const Eigen::Vector3d at = anchors.row(a).transpose(), moved = now.apply(at), r = moved - centre;
     Eigen::Matrix<double, 3, 7> j;
-    j << Eigen::Matrix3d::Identity(), -(Eigen::Matrix3d() << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0).finished(), r;
+    j.leftCols<3>().setIdentity();
+    for (int k = 0; k < 3; ++k) j.col(3 + k) = Eigen::Vector3d::Unit(k).cross(r);  // ∂(ω × r)/∂ω_k
+    j.col(6) = r;
     normal += weight * j.transpose() * j;
     gradient += weight * j.transpose() * (moved - at);
   }

@@ -70,7 +70,7 @@ class Retargeter {
   std::vector<Eigen::Matrix3d> alignment_;  // per target joint: A_t
   Eigen::Matrix3d axes_;
   double rootScale_ = 1.0;
-  Eigen::Vector3d rootLift_ = Eigen::Vector3d::Zero();  // puts the target's feet on its rest floor in the source's rest
+  Eigen::Vector3d rootLift_ = Eigen::Vector3d::Zero();  // puts the target's feet on its rest floor in the stance
   std::vector<Eigen::Isometry3d> sourceStance_;          // options.sourceStance or the source's rest
   std::vector<std::string> skipped_;
 };
