@@ -117,6 +117,26 @@ TEST(BoneVertices, TouchingBonesGiveTheirSharedVerticesToTheLaterBone) {
   EXPECT_THROW(posing::boneVerticesOfLabels(T, label.head(2), {{5}}, 7), BadInput);
 }
 
+// A soft-tissue tet spanning two bones (a joint space thinner than a tet): the earlier bone's vertices in it
+// are freed, so the untangler can move them; a bone that would lose every vertex keeps them.
+TEST(BoneVertices, ASoftTissueTetSpanningTwoBonesFreesTheEarlierBonesCorners) {
+  MatrixX4i T(5, 4);
+  T << 0, 1, 2, 3,  // bone 0
+      1, 2, 3, 4,   // bone 0
+      5, 6, 7, 8,   // bone 1
+      3, 4, 5, 6,   // soft tissue between the two
+      4, 6, 8, 9;   // soft tissue touching bones 0 and 1 and a free vertex
+  const Eigen::VectorXi label = (Eigen::VectorXi(5) << 5, 5, 7, 1, 1).finished();
+  EXPECT_EQ(posing::boneVerticesOfLabels(T, label, {{5}, {7}}, 10),
+            (Eigen::VectorXi(10) << 0, 0, 0, -1, -1, 1, 1, 1, 1, -1).finished());
+  // Every vertex of bone 0 in a tet that bridges it to bone 1: bone 0 keeps them all.
+  MatrixX4i U(4, 4);
+  U << 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 4, 3, 5, 6, 8;
+  const Eigen::VectorXi labelU = (Eigen::VectorXi(4) << 5, 7, 1, 1).finished();
+  EXPECT_EQ(posing::boneVerticesOfLabels(U, labelU, {{5}, {7}}, 9),
+            (Eigen::VectorXi(9) << 0, 0, 0, 0, 1, 1, 1, 1, -1).finished());
+}
+
 class CtBones : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
