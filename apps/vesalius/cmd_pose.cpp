@@ -1,8 +1,9 @@
 // vesalius pose: an anatomy directory (`vesalius rig`) put into the poses of a motion or of joint angles
 // (seed 001 §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders,
 // and the quality of every pose (issue 6): inverted tets, posed/rest tet volumes, the skin's volume change and
-// the tissue vertices that leave their tet. The tets skinning inverts or flattens are repaired first
-// (posing/untangle_tets.h) unless --no-untangle.
+// the tissue vertices that leave their tet. The skinned tets first get their rest volumes back
+// (posing/volume_restoration.h) unless --no-restore-volume, then the tets skinning inverts or flattens are
+// repaired (posing/untangle_tets.h) unless --no-untangle.
 #include "anatomy_rig.h"
 #include "common.h"
 #include "posing_session.h"
@@ -38,7 +39,7 @@ namespace {
 struct PoseOptions {
   std::string anatomy, motion, map, frames, angles, method = "lbs", out, volume, labels, pngDir;
   int frame = 0, every = 1;
-  bool everyGiven = false, qualityOnly = false, motionLps = false, noUntangle = false;
+  bool everyGiven = false, qualityOnly = false, motionLps = false, noUntangle = false, noRestore = false;
   CommonOptions common;
 };
 
@@ -87,8 +88,10 @@ struct PoseQuality {
   double minVolumeRatio = 0;     // smallest posed / rest tet volume
   double skinVolumeChangePct = std::numeric_limits<double>::quiet_NaN();  // posed / rest skin volume - 1, %
   double tetVolumeChangePct = 0;  // posed / rest volume of the whole tet mesh - 1, %
+  double skinnedTetVolumeChangePct = 0;  // the same as skinned, before the restoration and the repair
   long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
-  posing::UntangleResult untangle;  // the repair before these were measured (zeros with --no-untangle)
+  posing::VolumeRestoreResult restore;  // the restoration before these were measured (zeros if off)
+  posing::UntangleResult untangle;  // the repair after it (zeros with --no-untangle)
 };
 
 // Measures PoseQuality against the rest rig, whose tet volumes, skin volume and inside vertices it keeps.
@@ -158,13 +161,15 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
   writeAtomically(path, options, [&](const std::string& temporary) {
     std::ofstream out(temporary);
     out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside"
-           "\tuntangled_tets\tuntangle_max_move_mm\ttet_volume_change_pct\n";
+           "\tuntangled_tets\tuntangle_max_move_mm\ttet_volume_change_pct\tskinned_tet_volume_change_pct"
+           "\trestore_max_move_mm\n";
     out.precision(9);
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const PoseQuality& q = quality[p];
       out << (poses[p].frame < 0 ? "-" : std::to_string(poses[p].frame)) << '\t' << method << '\t' << q.inverted
           << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\t'
-          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\t' << q.tetVolumeChangePct << '\n';
+          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\t' << q.tetVolumeChangePct << '\t'
+          << q.skinnedTetVolumeChangePct << '\t' << q.restore.maxMove << '\n';
     }
     if (!out) throw BadInput(temporary, "cannot write");
   });
@@ -270,7 +275,7 @@ void runPose(const PoseOptions& o) {
   report.parameter("method", o.method);
   const PosingSession session = [&] {
     auto timer = report.time("embed");
-    return PosingSession(o.anatomy, !o.noUntangle);
+    return PosingSession(o.anatomy, !o.noUntangle, !o.noRestore);
   }();
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();
@@ -282,17 +287,21 @@ void runPose(const PoseOptions& o) {
   std::vector<PoseQuality> quality;
   Progress progress(o.common.progressStyle());
   progress.begin("pose", o.method);
-  double skinningSeconds = 0, untangleSeconds = 0;  // skinning includes untangling
+  double skinningSeconds = 0, restoreSeconds = 0, untangleSeconds = 0;  // skinning includes both
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto start = std::chrono::steady_clock::now();
     Posed posed{MatrixX3d(), poses[p].world};
-    const posing::UntangleResult untangled = session.skinTets(poses[p].world, o.method, posed.tets);
+    const PosingSession::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
     skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<MatrixX3d> carried;
     session.carry(posed.tets, carried);
     quality.push_back(meter(posed.tets, carried));
-    quality.back().untangle = untangled;
-    untangleSeconds += untangled.seconds;
+    quality.back().restore = repairs.restore;
+    quality.back().untangle = repairs.untangle;
+    quality.back().skinnedTetVolumeChangePct =
+        o.noRestore ? std::numeric_limits<double>::quiet_NaN() : 100 * repairs.restore.volumeChangeBefore;
+    restoreSeconds += repairs.restore.seconds;
+    untangleSeconds += repairs.untangle.seconds;
     if (!o.qualityOnly) {
       const std::string& name = poses[p].name;
       const std::string dir = name.empty() ? o.out : o.out + "/" + name;
@@ -307,11 +316,14 @@ void runPose(const PoseOptions& o) {
   writeQualityTable(o.out + "/quality.tsv", poses, quality, o.method, o.common.writeOptions());
   report.output("poses", o.out);
   report.metric("poses", poses.size());
-  report.metric("skinning_seconds_per_pose", (skinningSeconds - untangleSeconds) / poses.size());
+  const double skinOnly = skinningSeconds - restoreSeconds - untangleSeconds;
+  report.metric("skinning_seconds_per_pose", skinOnly / poses.size());
+  report.metric("restore_seconds_per_pose", restoreSeconds / poses.size());
   report.metric("untangle_seconds_per_pose", untangleSeconds / poses.size());
   std::cout << o.out << ": " << poses.size() << " pose(s) by " << o.method << ", " << meshes.size()
-            << " mesh(es) each; skinning " << 1000 * (skinningSeconds - untangleSeconds) / poses.size()
-            << " ms and untangling " << 1000 * untangleSeconds / poses.size() << " ms per pose\n";
+            << " mesh(es) each; skinning " << 1000 * skinOnly / poses.size() << " ms, restoring the volume "
+            << 1000 * restoreSeconds / poses.size() << " ms and untangling " << 1000 * untangleSeconds / poses.size()
+            << " ms per pose\n";
   reportWorstQuality(poses, quality, meter.insideAtRest(), report);
   o.common.finish(report);
 }
@@ -336,6 +348,9 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--volume", o->volume, "A scan in the rig's space to re-pose (trilinear)");
   cmd->add_option("--labels", o->labels, "A label map in the rig's space to re-pose (nearest neighbour)");
   cmd->add_option("--png-dir", o->pngDir, "Write a render of each pose here (needs a display)");
+  cmd->add_flag("--no-restore-volume", o->noRestore,
+                "Keep the volume skinning loses or gains: no smooth displacement giving the tets their rest volumes "
+                "back (the seed's bare skinning, with --no-untangle)");
   cmd->add_flag("--no-untangle", o->noUntangle,
                 "Keep the skinned tets as they are: no repair of the tets skinning inverts or flattens");
   cmd->add_flag("--quality-only", o->qualityOnly, "Write only quality.tsv (inverted tets, volume changes), no poses");

@@ -51,12 +51,14 @@ bool isSkinningMethod(const std::string& method) {
   return method == "lbs" || method == "dqs" || method == "cor" || method == "fem";
 }
 
-PosingSession::PosingSession(const std::string& anatomyDir, bool untangle) : rig_(readAnatomyRig(anatomyDir)) {
+PosingSession::PosingSession(const std::string& anatomyDir, bool untangle, bool restoreVolume)
+    : rig_(readAnatomyRig(anatomyDir)) {
   for (const std::string& path : rig_.meshes) {
     meshes_.push_back(io::readTriMesh(path));
     embeddings_.push_back(embedInTets(rig_.tets.V, rig_.tets.T, meshes_.back().V));
   }
   if (rig_.tets.vertexAttributes.real.count("cor_centre")) centres_ = rig_.centres();
+  if (restoreVolume) restore_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
   if (untangle) untangle_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
 }
 
@@ -66,7 +68,7 @@ int PosingSession::meshIndex(const std::string& stem) const {
   return -1;
 }
 
-posing::UntangleResult PosingSession::skinTets(const std::vector<Eigen::Isometry3d>& world,
+PosingSession::Repairs PosingSession::skinTets(const std::vector<Eigen::Isometry3d>& world,
                                               const std::string& method, MatrixX3d& tets) const {
   if (!isSkinningMethod(method)) throw UsageError("skinning method must be lbs, dqs, cor or fem, not " + method);
   const std::vector<Eigen::Isometry3d> all = posing::restToPosed(rig_.skeleton, world);
@@ -83,7 +85,10 @@ posing::UntangleResult PosingSession::skinTets(const std::vector<Eigen::Isometry
   } else {
     tets = posing::corotationalFem(V, rig_.tets.T, rig_.boneOfVertex(), bones).V;
   }
-  return untangle_ ? (*untangle_)(tets) : posing::UntangleResult{};
+  Repairs repairs;
+  if (restore_) repairs.restore = (*restore_)(tets);
+  if (untangle_) repairs.untangle = (*untangle_)(tets);
+  return repairs;
 }
 
 void PosingSession::carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const {

@@ -1,8 +1,9 @@
 // A rigged anatomy ready to be posed frame after frame (seed 001 §3.4-3.5, §4): the rig of an anatomy
 // directory (anatomy_rig.h), its meshes at rest embedded once in the rest tets, and a BVH motion
 // retargeted once onto its skeleton. Each frame then costs one skinning of the tets (LBS, DQS, CoR or the
-// co-rotational FEM reference), the local repair of the tets it inverts or flattens (posing/untangle_tets.h,
-// our addition to the seed; on unless turned off) and one carrying of the embedded meshes. `vesalius pose` and the viewer
+// co-rotational FEM reference), the restoration of the volume it loses or gains (posing/volume_restoration.h),
+// the local repair of the tets it inverts or flattens (posing/untangle_tets.h; both our additions to the seed,
+// on unless turned off) and one carrying of the embedded meshes. `vesalius pose` and the viewer
 // `vesalius-poser` both pose through it, so the viewer shows what the command writes.
 // Deviation from §3.5: skinning and carrying run on the CPU (TBB inside the skinners), not on the GPU.
 #pragma once
@@ -15,6 +16,7 @@
 #include "vesalius/posing/joint_map.h"
 #include "vesalius/posing/retarget.h"
 #include "vesalius/posing/untangle_tets.h"
+#include "vesalius/posing/volume_restoration.h"
 
 #include <Eigen/Geometry>
 
@@ -49,9 +51,10 @@ bool isSkinningMethod(const std::string& method);  // lbs, dqs, cor or fem
 
 class PosingSession {
  public:
-  // Reads the anatomy directory and its meshes and embeds the meshes in the rest tets. untangle: repair the
-  // inverted or flat tets of each skinned pose (the bone vertices stay).
-  explicit PosingSession(const std::string& anatomyDir, bool untangle = true);
+  // Reads the anatomy directory and its meshes and embeds the meshes in the rest tets. restoreVolume: give
+  // each skinned pose's tets back their rest volumes by a smooth displacement; untangle: then repair the
+  // inverted or flat tets (the bone vertices stay in both).
+  explicit PosingSession(const std::string& anatomyDir, bool untangle = true, bool restoreVolume = true);
 
   const AnatomyRig& rig() const { return rig_; }
   const std::vector<TriMesh>& meshes() const { return meshes_; }  // at rest, in rig().meshes order
@@ -60,9 +63,13 @@ class PosingSession {
 
   // world: posed world transforms of the rig's joints. Writes the #V by 3 posed tet vertices into `tets`
   // (kept by a caller posing many frames). method: lbs, dqs, cor or fem (UsageError otherwise; BadInput
-  // for cor on a rig without centres of rotation). Returns what the repair did (all zero when it is off).
-  posing::UntangleResult skinTets(const std::vector<Eigen::Isometry3d>& world, const std::string& method,
-                                  MatrixX3d& tets) const;
+  // for cor on a rig without centres of rotation). Returns what the restoration and the repair did (all zero
+  // for a step that is off).
+  struct Repairs {
+    posing::VolumeRestoreResult restore;
+    posing::UntangleResult untangle;
+  };
+  Repairs skinTets(const std::vector<Eigen::Isometry3d>& world, const std::string& method, MatrixX3d& tets) const;
   // tets: #V by 3 posed tet vertices. Writes, per mesh, its #P by 3 carried vertices into `carried`.
   void carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const;
 
@@ -71,7 +78,8 @@ class PosingSession {
   std::vector<TriMesh> meshes_;
   std::vector<TetEmbedding> embeddings_;
   MatrixX3d centres_;  // the rig's centres of rotation, empty if it has none
-  std::optional<posing::TetUntangler> untangle_;  // none when the repair is off
+  std::optional<posing::VolumeRestorer> restore_;  // none when the restoration is off
+  std::optional<posing::TetUntangler> untangle_;    // none when the repair is off
 };
 
 }  // namespace vesalius::cli

@@ -12,6 +12,8 @@
 //   5. CoR centres again with many bones (the MakeHuman rig has 50): the bar at 3 cells per unit with its
 //      bone cores cut into pieces, 26 bones, so that a vertex feels many bone pairs.
 // Usage: bench_posing [cells per unit, default 6] [brute-force sample, default 24].
+//        bench_posing restore [cells per unit, default 2]: only the volume restoration after skinning
+//        (volume_restoration.h), per frame against LBS skinning alone, on a smaller bar.
 #include "bench_support.h"
 #include "posing_test_support.h"
 
@@ -20,6 +22,7 @@
 #include "vesalius/posing/dual_quaternion_skinning.h"
 #include "vesalius/posing/linear_blend_skinning.h"
 #include "vesalius/posing/rotation_centers.h"
+#include "vesalius/posing/volume_restoration.h"
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/core/tet_locator.h"
 
@@ -31,8 +34,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace vesalius;
@@ -255,9 +260,37 @@ void skinning(const test::BoneBar& bar, const Eigen::MatrixXd& W, const MatrixX3
   }
 }
 
+// The volume restoration of the bar bent 100° by LBS: its set-up (one factorization) and one frame, against
+// the LBS frame of the tet mesh alone.
+void volumeRestoration(int cells) {
+  const test::BoneBar bar = test::fourBoneBar(cells);
+  std::printf("four-bone bar, %d cells per unit: %ld vertices, %ld tets\n\n", cells, long(bar.mesh.V.rows()),
+              long(bar.mesh.T.rows()));
+  const Eigen::MatrixXd W = posing::computeBoneWeights(bar.mesh.V, bar.mesh.T, bar.boneOfVertex);
+  const auto pose = test::middleJointPose(bar, Eigen::Vector3d::UnitY(), 100.0);
+  MatrixX3d skinned;
+  const double skin = secondsPerFrame([&] { posing::linearBlendSkinning(bar.mesh.V, W, pose, skinned); });
+  std::unique_ptr<posing::VolumeRestorer> restore;
+  const double setUp = bench::seconds(
+      [&] { restore = std::make_unique<posing::VolumeRestorer>(bar.mesh.V, bar.mesh.T, bar.boneOfVertex); });
+  posing::VolumeRestoreResult r;
+  const double frame = secondsPerFrame([&] {
+    MatrixX3d posed = skinned;
+    r = (*restore)(posed);
+  });
+  std::printf("| volume restoration, LBS bent 100° (%ld regions) | set-up %.2f s; %.0f ms per frame (%d Gauss-Newton "
+              "steps, %d CG iterations) | LBS skinning %.1f ms | %.0f× skinning | volume %+.2f %% -> %+.2f %% |\n",
+              long(restore->regionCount()), setUp, 1e3 * frame, r.iterations, r.cgIterations, 1e3 * skin,
+              frame / skin, 100 * r.volumeChangeBefore, 100 * r.volumeChangeAfter);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "restore") {
+    volumeRestoration(argc > 2 ? std::atoi(argv[2]) : 2);
+    return 0;
+  }
   const int cells = argc > 1 ? std::atoi(argv[1]) : 6, sampleSize = argc > 2 ? std::atoi(argv[2]) : 24;
   const test::BoneBar bar = test::fourBoneBar(cells);
   std::printf("four-bone bar, %d cells per unit: %ld vertices, %ld tets\n\n", cells, long(bar.mesh.V.rows()),

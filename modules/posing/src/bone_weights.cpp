@@ -94,7 +94,16 @@ SpMat stiffnessPattern(Index n, const MatrixX4i& T) {
   return Eigen::Map<const SpMat>(n, n, Index(inner.size()), outer.data(), inner.data(), values.data());
 }
 
-// P1 stiffness K_ab = Σ_t vol_t ∇φ_a·∇φ_b (both triangles).
+// Clamps to [0, 1] and rescales each row to sum 1 (bone_weights.h says why it may be needed).
+void clampAndNormalize(Eigen::MatrixXd& W) {
+  tbb::parallel_for(Index(0), W.rows(), [&](Index i) {
+    W.row(i) = W.row(i).cwiseMax(0.0).cwiseMin(1.0);
+    W.row(i) /= W.row(i).sum();
+  });
+}
+
+}  // namespace
+
 SpMat stiffnessMatrix(const MatrixX3d& V, const MatrixX4i& T) {
   SpMat K = stiffnessPattern(V.rows(), T);
   for (Index t = 0; t < T.rows(); ++t) {
@@ -116,16 +125,6 @@ SpMat stiffnessMatrix(const MatrixX3d& V, const MatrixX4i& T) {
   }
   return K;
 }
-
-// Clamps to [0, 1] and rescales each row to sum 1 (bone_weights.h says why it may be needed).
-void clampAndNormalize(Eigen::MatrixXd& W) {
-  tbb::parallel_for(Index(0), W.rows(), [&](Index i) {
-    W.row(i) = W.row(i).cwiseMax(0.0).cwiseMin(1.0);
-    W.row(i) /= W.row(i).sum();
-  });
-}
-
-}  // namespace
 
 Eigen::MatrixXd computeBoneWeights(const MatrixX3d& V, const MatrixX4i& T, const Eigen::VectorXi& boneOfVertex,
                                    const BoneWeightsOptions& options) {

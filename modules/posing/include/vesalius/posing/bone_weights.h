@@ -18,6 +18,7 @@
 #include "vesalius/core/mesh.h"
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace vesalius::posing {
 
@@ -26,6 +27,11 @@ struct BoneWeightsOptions {
   // which is how one measures the excursion on a given mesh.
   bool clampAndNormalize = true;
 };
+
+// The P1 stiffness ("cotangent") matrix K_ab = Σ_t vol_t ∇φ_a·∇φ_b of eq. 5, #V by #V, both triangles stored.
+// Also the Dirichlet energy uᵀKu = ∫|∇u|² of a P1 field u (volume_restoration.h). Throws BadInput if a tet
+// is flat or inverted.
+Eigen::SparseMatrix<double> stiffnessMatrix(const MatrixX3d& V, const MatrixX4i& T);
 
 // V: #V by 3 rest positions, T: #T by 4 positively oriented tets, boneOfVertex: #V, -1 for free tissue
 // and j >= 0 for a vertex inside bone j. Returns W: #V by #B (#B = largest bone index + 1), W(i, j) the
