@@ -79,20 +79,16 @@ Eigen::SparseMatrix<double> gridRegions(const MatrixX3d& V, const MatrixX4i& T, 
 }
 
 // Σ over the tets of a free vertex of s_t times the tet's volume gradient at that vertex: Gᵀ s restricted
-// to the free vertices.
-Eigen::MatrixX3d gatherFree(const std::vector<int>& freeVertices, const VertexTets& tetsOf, const MatrixX4i& T,
+// to the free vertices. Serial, tet after tet: the tets and their gradients are read in order and the sums
+// (#free by 3) stay in cache; a parallel gather per vertex was 10 times slower.
+Eigen::MatrixX3d gatherFree(const std::vector<int>& freeIndex, Eigen::Index freeCount, const MatrixX4i& T,
                             const std::vector<Corners>& gradient, const Eigen::VectorXd& s) {
-  Eigen::MatrixX3d out(Eigen::Index(freeVertices.size()), 3);
-  tbb::parallel_for(std::size_t(0), freeVertices.size(), [&](std::size_t i) {
-    const int v = freeVertices[i];
-    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-    for (const int* t = tetsOf.begin(v); t != tetsOf.end(v); ++t) {
-      int c = 0;
-      while (T(*t, c) != v) ++c;
-      sum += s[*t] * gradient[std::size_t(*t)].row(c);
+  Eigen::MatrixX3d out = Eigen::MatrixX3d::Zero(freeCount, 3);
+  for (Eigen::Index t = 0; t < T.rows(); ++t)
+    for (int c = 0; c < 4; ++c) {
+      const int f = freeIndex[std::size_t(T(t, c))];
+      if (f >= 0) out.row(f) += s[t] * gradient[std::size_t(t)].row(c);
     }
-    out.row(Eigen::Index(i)) = sum;
-  });
   return out;
 }
 
@@ -141,7 +137,6 @@ VolumeRestorer::VolumeRestorer(const MatrixX3d& restV, const MatrixX4i& T, const
       freeIndex_[std::size_t(v)] = int(freeVertices_.size());
       freeVertices_.push_back(int(v));
     }
-  tetsOf_ = vertexTets(T, restV.rows());
   stiffness_ = freeStiffness(restV, T);
 }
 
@@ -193,7 +188,7 @@ double VolumeRestorer::energy(const MatrixX3d& posed, const Eigen::MatrixX3d& u,
   }
   const TetVolumes current = tetVolumesAndGradients(moved, T_);
   const Eigen::VectorXd e = relativeErrors(current.volume);
-  *gradient = gatherFree(freeVertices_, tetsOf_, T_, current.gradient, regions_.transpose() * e) +
+  *gradient = gatherFree(freeIndex_, freeCount(), T_, current.gradient, regions_.transpose() * e) +
               options_.smoothness * Ku;
   return 0.5 * (e.array().square() * regionRestVolume_.array()).sum() + smooth;
 }
@@ -206,7 +201,7 @@ Eigen::MatrixX3d VolumeRestorer::gaussNewtonStep(const MatrixX3d& posed, const E
   const TetVolumes current = tetVolumesAndGradients(posed, T_);
   const auto apply = [&](const Eigen::MatrixX3d& d) -> Eigen::MatrixX3d {
     const Eigen::VectorXd change = regions_ * volumeChangeOf(freeIndex_, T_, current.gradient, d);
-    return gatherFree(freeVertices_, tetsOf_, T_, current.gradient,
+    return gatherFree(freeIndex_, freeCount(), T_, current.gradient,
                       regions_.transpose() * change.cwiseQuotient(regionRestVolume_)) +
            options_.smoothness * (stiffness_->K * d);
   };

@@ -30,7 +30,6 @@
 #pragma once
 
 #include "vesalius/core/mesh.h"
-#include "vesalius/core/tet_adjacency.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -97,7 +96,6 @@ class VolumeRestorer {
   Eigen::VectorXd regionRestVolume_;
   std::vector<int> freeVertices_;  // ascending
   std::vector<int> freeIndex_;     // per vertex its row in u, −1 for a bone vertex
-  VertexTets tetsOf_;
   std::shared_ptr<const Stiffness> stiffness_;
   VolumeRestoreOptions options_;
 };
