@@ -178,7 +178,7 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
 // Prints the worst value of each measure over all poses (with its frame) and puts it into the report.
 void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
                         long insideAtRest, io::Report& report) {
-  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0;
+  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0;
   long repairedTotal = 0, boneOnly = 0, unrepaired = 0;
   for (std::size_t p = 0; p < quality.size(); ++p) {
     repairedTotal += quality[p].untangle.badBefore;
@@ -186,6 +186,7 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
     unrepaired += quality[p].untangle.badAfter;
     if (quality[p].untangle.badBefore > quality[repaired].untangle.badBefore) repaired = p;
     if (quality[p].untangle.maxMove > quality[move].untangle.maxMove) move = p;
+    if (quality[p].restore.maxMove > quality[restoreMove].restore.maxMove) restoreMove = p;
     if (quality[p].inverted > quality[inverted].inverted) inverted = p;
     if (quality[p].minVolumeRatio < quality[ratio].minVolumeRatio) ratio = p;
     if (std::abs(quality[p].skinVolumeChangePct) > std::abs(quality[skin].skinVolumeChangePct)) skin = p;
@@ -205,6 +206,9 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
             << quality[skin].skinVolumeChangePct << " % (frame " << frame(skin) << "), "
             << quality[left].leftOutside << " of " << insideAtRest
             << " tissue vertices inside at rest left outside (frame " << frame(left) << ")\n";
+  report.metric("max_restore_move_mm", quality[restoreMove].restore.maxMove);
+  std::cout << "restoring the volume moved vertices by up to " << quality[restoreMove].restore.maxMove
+            << " mm (frame " << frame(restoreMove) << ")\n";
   report.metric("untangled_tets", repairedTotal);
   report.metric("max_untangled_tets", quality[repaired].untangle.badBefore);
   report.metric("max_untangle_move_mm", quality[move].untangle.maxMove);
