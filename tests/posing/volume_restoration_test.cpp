@@ -14,6 +14,7 @@
 #include "posing_test_support.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cstdio>
 #include <random>
@@ -142,6 +143,21 @@ TEST(VolumeRestoration, RestoresTheVolumeOfTheBentAndTwistedBar) {
       }
     }
   }
+}
+
+// Every parallel loop writes its own entries and every sum runs in one thread: the same on one thread.
+TEST(VolumeRestoration, GivesTheSameResultOnOneThread) {
+  const Bar& b = bar();
+  const MatrixX3d skinned =
+      posing::linearBlendSkinning(b.bar.mesh.V, b.W, test::middleJointPose(b.bar, Eigen::Vector3d::UnitY(), 100.0));
+  MatrixX3d parallel = skinned, serial = skinned;
+  b.restore(parallel);
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    b.restore(serial);
+  }
+  EXPECT_GT((parallel - skinned).cwiseAbs().maxCoeff(), 1.0);
+  EXPECT_EQ(parallel, serial);
 }
 
 TEST(VolumeRestoration, BadInputAndOptionsAreRefused) {
