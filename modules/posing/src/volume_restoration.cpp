@@ -1,4 +1,4 @@
-// Volume restoration of a skinned tet mesh (volume_restoration.h): Gauss-Newton on the tets' squared
+// Volume restoration of a skinned tet mesh (volume_restoration.h): Gauss-Newton on the soft regions' squared
 // relative volume errors plus α times the displacement's Dirichlet energy, each step by conjugate gradients
 // preconditioned with the rest stiffness matrix of the free vertices, factored once.
 #include "vesalius/posing/volume_restoration.h"
@@ -167,7 +167,7 @@ MatrixX3d VolumeRestorer::displaced(const MatrixX3d& posed, const Eigen::MatrixX
   return moved;
 }
 
-// Per region, its volume error over its rest volume: ∂E/∂V_t of every tet of the region.
+// Per region r, its volume error over its rest volume e_r; ∂E/∂V_t = Σ_r φ_r(c_t) e_r.
 Eigen::VectorXd VolumeRestorer::relativeErrors(const Eigen::VectorXd& tetVolume) const {
   return (regions_ * tetVolume - regionRestVolume_).cwiseQuotient(regionRestVolume_);
 }

@@ -65,8 +65,8 @@ class VolumeRestorer {
  public:
   // restV: #V by 3 rest positions, T: #T by 4 positively oriented tets, boneOfVertex: #V, −1 for a free vertex
   // and ≥ 0 for a bone vertex (never moved). Throws BadInput if a tet refers to a missing vertex or is flat
-  // or inverted at rest, boneOfVertex is not #V long, or a free vertex is in no part of the mesh that
-  // touches a bone (K would be singular); UsageError for options out of range.
+  // or inverted at rest, boneOfVertex is not #V long, there is no bone vertex, or the factorization of K
+  // fails (free vertices in no part of the mesh that touches a bone); UsageError for options out of range.
   VolumeRestorer(const MatrixX3d& restV, const MatrixX4i& T, const Eigen::VectorXi& boneOfVertex,
                  const VolumeRestoreOptions& options = {});
 
