@@ -179,7 +179,7 @@ void addSample(CLI::App& markers) {
 
 struct SuggestOptions {
   std::string scan, templ, labels, table, label, markers, out, placedOut;
-  int count = 100, candidatesPerSuggestion = 4, icpPoints = 500, rounds = 4, roundPoints = 1000;
+  int count = 100, candidatesPerSuggestion = 8, icpPoints = 500, rounds = 4, roundPoints = 1000;
   double searchMm = 8.0, finalSearchMm = 3.0, sigmaMm = 2.0, smoothness = 1.0;
   std::string polarity = "auto";
   std::uint64_t seed = 1;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace vesalius::segmentation {
@@ -18,6 +19,8 @@ void validate(const MatrixX3d& points, const MatrixX3d& normals, const NormalEdg
     if (!(v > 0) || !std::isfinite(v)) throw UsageError("edge search: sigma, search and step must be positive mm");
   if (!(o.sideMm >= 0) || !(o.bandMads > 0) || !(o.contrastMads >= 0) || !std::isfinite(o.contrastMads))
     throw UsageError("edge search: side, band and contrast must be positive");
+  if (!(o.plateauMm >= 0) || !std::isfinite(o.plateauMm) || !(o.plateauMads >= 0) || !std::isfinite(o.plateauMads))
+    throw UsageError("edge search: the plateau's reach and tolerance must not be negative");
   if (o.stepMm > o.searchMm) throw UsageError("edge search: the step must not exceed the search distance");
   if (points.rows() != normals.rows()) throw UsageError("edge search: one normal per point is needed");
   for (Eigen::Index i = 0; i < normals.rows(); ++i)
@@ -65,23 +68,36 @@ std::optional<double> valueAt(const Grid<float>& grid, const Eigen::Vector3d& wo
 // The blurred scan along the normal and its derivative: derivative[k] is ∂I/∂n at s_k = -searchMm +
 // k stepMm, the difference of the blurred scan at s_k ± stepMm / 2; values reach sideMm further both ways,
 // so that values[k] lies about sideMm inside s_k and values[k + 2 side + 1] as far outside it. Empty when
-// any sample falls outside the scan.
+// any of these samples falls outside the scan. The plateaus reach plateauMm further: at(j) for j < 0 lies
+// |j| steps behind values[0], for j past the end as far beyond values.back(); NaN beyond the scan, where
+// the plateau is not checked.
 struct Profile {
-  std::vector<double> values, derivative;
+  std::vector<double> values, derivative, behind, beyond;
   int side = 0;       // sideMm in steps
   double noise = 0;   // derivatives up to this are round-off of the blur, not edges
   double inner(int k) const { return values[std::size_t(k)]; }
   double outer(int k) const { return values[std::size_t(k + 2 * side + 1)]; }
+  int plateau() const { return int(behind.size()); }
+  double at(int j) const {
+    if (j < 0) return behind[std::size_t(-j - 1)];
+    if (j >= int(values.size())) return beyond[std::size_t(j - int(values.size()))];
+    return values[std::size_t(j)];
+  }
 };
+
+// The blurred scan at p + s n, NaN beyond the scan.
+double valueOrNan(const Grid<float>& blurred, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double s) {
+  return valueAt(blurred, p + n * s).value_or(std::numeric_limits<double>::quiet_NaN());
+}
 
 Profile sampleProfile(const Grid<float>& blurred, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
                       const NormalEdgeOptions& o) {
   Profile profile;
   profile.side = int(std::lround(o.sideMm / o.stepMm));
   const int pad = profile.side, count = 2 * int(std::lround(o.searchMm / o.stepMm)) + 1;
+  const double first = -o.searchMm - (pad + 0.5) * o.stepMm;  // s of values[0]
   for (int j = 0; j < count + 1 + 2 * pad; ++j) {
-    const double s = -o.searchMm + (j - pad - 0.5) * o.stepMm;
-    const std::optional<double> v = valueAt(blurred, p + n * s);
+    const std::optional<double> v = valueAt(blurred, p + n * (first + j * o.stepMm));
     if (!v) return {};
     profile.values.push_back(*v);
     profile.noise = std::max(profile.noise, 1e-5 * (1 + std::abs(*v)) / o.stepMm);
@@ -89,6 +105,11 @@ Profile sampleProfile(const Grid<float>& blurred, const Eigen::Vector3d& p, cons
   for (int k = 0; k < count; ++k)
     profile.derivative.push_back((profile.values[std::size_t(k + pad + 1)] - profile.values[std::size_t(k + pad)]) /
                                  o.stepMm);
+  const double last = first + double(profile.values.size() - 1) * o.stepMm;
+  for (int j = 1; j <= int(std::lround(o.plateauMm / o.stepMm)); ++j) {
+    profile.behind.push_back(valueOrNan(blurred, p, n, first - j * o.stepMm));
+    profile.beyond.push_back(valueOrNan(blurred, p, n, last + j * o.stepMm));
+  }
   return profile;
 }
 
@@ -113,21 +134,39 @@ double step(double inner, double outer, EdgePolarity polarity) {
   return std::abs(outer - inner);
 }
 
-// The tissue check: the inner side in the organ's band, the outer side `contrast` deviations beyond it.
-bool organOnInnerSide(const Profile& profile, int k, EdgePolarity polarity, const Band& organ, double contrast) {
+// The plateaus (normal_edges.h): for a falling edge nothing darker than the inner side over the plateau
+// behind it and nothing darker than the outer side over the plateau beyond it, each within `tolerance`
+// (brighter for a rising edge). An Either search checks the edge's own direction.
+bool onPlateaus(const Profile& profile, int k, EdgePolarity polarity, double tolerance) {
+  if (polarity == EdgePolarity::Either)
+    polarity = profile.derivative[std::size_t(k)] < 0 ? EdgePolarity::Falling : EdgePolarity::Rising;
+  const int outer = k + 2 * profile.side + 1;
+  for (int j = k - profile.plateau(); j < k; ++j)  // NaN beyond the scan: not checked
+    if (step(profile.inner(k), profile.at(j), polarity) > tolerance) return false;
+  for (int j = outer + 1; j <= outer + profile.plateau(); ++j)
+    if (step(profile.outer(k), profile.at(j), polarity) > tolerance) return false;
+  return true;
+}
+
+// The tissue check: the inner side in the organ's band, the outer side `contrastMads` deviations beyond
+// it, both sides on plateaus.
+bool organOnInnerSide(const Profile& profile, int k, EdgePolarity polarity, const Band& organ,
+                      const NormalEdgeOptions& o) {
   const double inner = profile.inner(k), outer = profile.outer(k);
-  return organ.holds(inner) && step(inner, outer, polarity) >= contrast * organ.deviation;
+  return organ.holds(inner) && step(inner, outer, polarity) >= o.contrastMads * organ.deviation &&
+         onPlateaus(profile, k, polarity, o.plateauMads * organ.deviation);
 }
 
 // Index of the largest interior local maximum (above round-off) of the edge values that passes the tissue
 // check against `organ`, or -1. With no band, any peak.
-int strongestPeak(const Profile& profile, EdgePolarity polarity, const Band* organ = nullptr, double contrast = 0) {
+int strongestPeak(const Profile& profile, EdgePolarity polarity, const Band* organ = nullptr,
+                  const NormalEdgeOptions* o = nullptr) {
   const std::vector<double>& d = profile.derivative;
   int best = -1;
   for (std::size_t k = 1; k + 1 < d.size(); ++k) {
     const double e = edgeValue(d[k], polarity);
     if (!(e > profile.noise && e >= edgeValue(d[k - 1], polarity) && e > edgeValue(d[k + 1], polarity))) continue;
-    if (organ && !organOnInnerSide(profile, int(k), polarity, *organ, contrast)) continue;
+    if (organ && !organOnInnerSide(profile, int(k), polarity, *organ, *o)) continue;
     if (best < 0 || e > edgeValue(d[std::size_t(best)], polarity)) best = int(k);
   }
   return best;
@@ -166,7 +205,7 @@ NormalEdge edgeOnProfile(const Profile& profile, const Eigen::Vector3d& p, const
                          EdgePolarity polarity, const Band* organ, const NormalEdgeOptions& o) {
   NormalEdge edge;
   edge.position = p;
-  const int k = profile.derivative.empty() ? -1 : strongestPeak(profile, polarity, organ, o.contrastMads);
+  const int k = profile.derivative.empty() ? -1 : strongestPeak(profile, polarity, organ, &o);
   if (k < 0) return edge;
   std::vector<double> magnitude;
   for (double d : profile.derivative) magnitude.push_back(std::abs(d));
@@ -203,7 +242,7 @@ NormalEdges findNormalEdges(const Image& scan, const MatrixX3d& points, const Ma
   NormalEdges result;
   if (points.rows() == 0) return result;
   // Four sigmas hold the Gaussian's weight to 1e-4; beyond them the crop's edge cannot show in the blur.
-  const double reach = options.searchMm + options.sideMm + options.stepMm + 4 * options.sigmaMm;
+  const double reach = options.searchMm + options.sideMm + options.plateauMm + options.stepMm + 4 * options.sigmaMm;
   const Grid<float> blurred = detail::gaussianSmoothMm(cropAround(scan, points, reach), options.sigmaMm);
 
   std::vector<Profile> profiles(std::size_t(points.rows()));

@@ -1,10 +1,10 @@
 // `vesalius markers suggest` end to end on the test CT: the liver template, placed by similarity and affine
 // ICP on TotalSegmentator's liver label and bent onto the scan's edges, gets suggested ICP markers; most lie
-// within 2 mm of the label's boundary, more than without the bending and clearly more than points spread
-// over the placed template without the edge search (so the search, not the placement, puts them there);
-// those on the boundary are not biased in or out, and none of the others lies deep inside the liver (each
-// is printed with the labels near it). Every suggestion is a preview with a confidence in [0, 1]; a missing
-// template and an unknown label are refused in one line naming the file.
+// within 2 mm of the label's boundary (at least 90 %, as issue 5 aims), no fewer than without the bending
+// and far more than points spread over the placed template without the edge search (so the search, not
+// the placement, puts them there); those on the boundary are not biased in or out, and none of the others
+// lies deep inside the liver (each is printed with the labels near it). Every suggestion is a preview with
+// a confidence in [0, 1]; a missing template and an unknown label are refused in one line naming the file.
 #include "run_command.h"
 
 #include "vesalius/core/triangle_tree.h"
@@ -159,10 +159,11 @@ TEST(CliMarkersSuggest, SuggestionsLieOnTheLiverBoundaryMoreThanThePlacedTemplat
   std::cout << "within 2 mm of the liver label's boundary: " << withSearch << " of the suggestions, "
             << withoutBending << " of those without bending (--rounds 0), " << withoutSearch
             << " of the points on the placed template\n";
-  // Measured 0.82, 0.75 and 0.18 (docs/methods/marker-suggestions.md: 0.82-0.87 over seeds 1-4); issue 5
-  // aims at 0.9, which edges of the body wall and the colon next to the liver keep out of reach.
-  EXPECT_GE(withSearch, 0.80) << "suggestions within 2 mm of the liver label's boundary";
-  EXPECT_GE(withSearch - withoutBending, 0.06) << "what bending the template onto the edges adds";
+  // Measured 0.91, 0.90 and 0.18 (docs/methods/marker-suggestions.md: 0.88-0.91 over seeds 1-4, mean
+  // 0.90; issue 5 aims at 0.9). Since the plateau check (session 18) the edge search alone is nearly as
+  // good as after bending (seeds 1-8: bending adds -0.01 to +0.05, mean +0.015): bending must not lose.
+  EXPECT_GE(withSearch, 0.90) << "suggestions within 2 mm of the liver label's boundary";
+  EXPECT_GE(withSearch, withoutBending) << "bending the template onto the edges loses suggestions";
   EXPECT_GE(withSearch - withoutSearch, 0.55) << "what the edge search adds to the placed template";
 
   // In or out (docs/methods/marker-suggestions.md, "Where the misses are"): each miss, and the medians.
@@ -188,12 +189,11 @@ TEST(CliMarkersSuggest, SuggestionsLieOnTheLiverBoundaryMoreThanThePlacedTemplat
   std::cout << "signed distance (outside positive): median " << median(signedMm) << " mm, of those within 2 mm "
             << hitMedian << " mm; " << outside << " of " << n - int(hits.size()) << " misses outside; deepest "
             << deepest << " mm\n";
-  // Measured -0.16 mm: no bias beyond a third of the 3 mm voxel. 10 of 17 misses outside (an edge outside
-  // the liver: the body wall's, the colon's; 18 of 19 before the tissue check asked for a step of two
-  // deviations), the 7 inside 2.0-3.4 mm in (seeds 1-4: at most 3.4 mm): the liver's own edge, not one deep
-  // inside it.
+  // Measured -0.58 mm: no bias beyond a third of the 3 mm voxel. 5 of 9 misses outside (3 at the right
+  // body wall, 7-10 mm out; 10 of 17 before the plateau check, 18 of 19 before the tissue check asked for a
+  // step of two deviations), the 4 inside 2.1-2.5 mm in: the liver's own edge, not one deep inside it.
   EXPECT_LE(std::abs(hitMedian), 1.0) << "the suggestions on the boundary are biased in or out";
-  EXPECT_LE(outside, 13) << "misses outside the liver (body wall, colon)";
+  EXPECT_LE(outside, 7) << "misses outside the liver (body wall, colon)";
   EXPECT_GE(deepest, -4.0) << "a suggestion deep inside the liver";
 
   std::ifstream in(reportPath);

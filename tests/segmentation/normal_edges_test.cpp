@@ -2,7 +2,8 @@
 // 3 mm inside its surface along the outward normals, must find the ball's surface (falling edge) to a
 // fraction of a millimetre; a ball inside a brighter shell of another tissue keeps the ball's edge when
 // the tissue check is on; an outer tissue within the organ's band counts as another tissue where it is two
-// robust deviations darker than the organ's side; a flat image gives nothing.
+// robust deviations darker than the organ's side; the edge of a brighter layer on the organ is not taken
+// for the organ's (the plateau check); a flat image gives nothing.
 #include "vesalius/segmentation/normal_edges.h"
 
 #include "vesalius/core/error.h"
@@ -43,10 +44,12 @@ MatrixX3d directions(int n) {
 TEST(NormalEdges, FindsTheBallSurfaceFromInside) {
   const Image ball = radialImage([](double r) { return r < kRadius ? 100.0 : 0.0; });
   const MatrixX3d normals = directions(50), points = (kRadius - 3) * normals;
-  // sigma 1 mm: the tissue check samples 3 mm either side, beyond the blur of the edge itself (with the
-  // default 2 mm the inner side reads 93, outside a uniform ball's band of its own value ± 1 %).
+  // sigma 0.75 mm: the tissue check samples 3 mm (4 sigmas) either side, beyond the blur of the edge itself
+  // (with the default 2 mm the inner side reads 93, outside a uniform ball's band of its own value ± 1 %;
+  // with 1 mm the outer side still reads 0.26 above the background beyond it, more than the plateau's
+  // tolerance on a uniform phantom, half a deviation of 0.5).
   NormalEdgeOptions options;
-  options.sigmaMm = 1.0;
+  options.sigmaMm = 0.75;
   const NormalEdges found = findNormalEdges(ball, points, normals, options);
   EXPECT_EQ(found.polarity, EdgePolarity::Falling);
   for (const NormalEdge& e : found.edges) {
@@ -110,6 +113,41 @@ TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
   EXPECT_EQ(dropped, 37);
 }
 
+// The organ 100 + 10 z/r to r = 20 (band 100 ± 14.8, deviation 7.4, as above), a brighter layer (112,
+// inside the band: the diaphragm and ribs on the liver) to r = 24, then background 0. The only falling
+// edge is the layer's at 24, its inner side in the band and its outer side far darker; without the plateau
+// check it is found everywhere. With it, where the organ behind the layer is more than half a deviation
+// (3.7) darker than the layer (z/r below 0.83; all of z/r below 0.5 asserted) the edge is refused.
+TEST(NormalEdges, PlateauCheckRefusesTheEdgeOfABrighterLayerOnTheOrgan) {
+  const Image scan = radialImage([](double r) { return r < kRadius ? 100.0 : r < 24 ? 112.0 : 0.0; });
+  Image textured = scan;
+  const GridGeometry& g = scan.geometry;
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i) {
+        const Eigen::Vector3d x = g.indexToWorld(Eigen::Vector3d(i, j, k));
+        if (x.norm() < kRadius) textured.at(i, j, k) += float(10 * x.z() / x.norm());
+      }
+  const MatrixX3d normals = directions(50), points = (kRadius - 3) * normals;
+  NormalEdgeOptions options;
+  options.sigmaMm = 0.75;
+  options.plateauMm = 0;
+  const NormalEdges without = findNormalEdges(textured, points, normals, options);
+  options.plateauMm = 9;
+  const NormalEdges with = findNormalEdges(textured, points, normals, options);
+  int refused = 0;
+  for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+    const NormalEdge& e = without.edges[std::size_t(i)];
+    ASSERT_TRUE(e.found) << "z/r " << normals(i, 2);
+    EXPECT_NEAR(e.position.norm(), 24.0, 0.6) << "without the plateau check: the layer's edge";
+    if (normals(i, 2) < 0.5) {
+      EXPECT_FALSE(with.edges[std::size_t(i)].found) << "z/r " << normals(i, 2);
+      ++refused;
+    }
+  }
+  EXPECT_EQ(refused, 37);
+}
+
 TEST(NormalEdges, FlatImageHasNoEdgesAndBadOptionsAreRefused) {
   const Image flat = radialImage([](double) { return 7.0; });
   const MatrixX3d normals = directions(10), points = 10 * normals;
@@ -121,6 +159,9 @@ TEST(NormalEdges, FlatImageHasNoEdgesAndBadOptionsAreRefused) {
   bad.searchMm = 0;
   EXPECT_THROW(findNormalEdges(flat, points, normals, bad), UsageError);
   EXPECT_THROW(findNormalEdges(flat, points, MatrixX3d::Zero(10, 3)), UsageError);
+  NormalEdgeOptions negativePlateau;
+  negativePlateau.plateauMm = -1;
+  EXPECT_THROW(findNormalEdges(flat, points, normals, negativePlateau), UsageError);
 }
 
 }  // namespace

@@ -24,6 +24,14 @@
 // organ's band (muscle against liver on CT) can then be the outer side of the organ's edge, and a small
 // step out of the band's lower end (from muscle to something slightly darker) is not an edge of the
 // organ. Changes within round-off of the blur (1e-5 of the value per step) are not edges.
+// Plateaus: the edge must be one step between two plateaus, as a profile model's mean profile across an
+// organ's boundary is (Cootes et al. 1995 §5). For a falling edge, no value over plateauMm behind the
+// inner side may be more than plateauMads deviations darker than the inner side, and none over plateauMm
+// beyond the outer side more than plateauMads darker than the outer side (brighter, for a rising edge).
+// Darker tissue behind the inner side makes the inner side a brighter layer on the organ (diaphragm,
+// costal cartilage and ribs on the liver) and the edge that layer's against fat; a profile that keeps
+// falling beyond the outer side (muscle to fat to air at the body wall, a bowel wall over fat and gas)
+// makes the edge one step of a ramp across several tissues, not the organ's against its neighbour.
 // Confidence = contrast · closeness, in [0, 1]: contrast = (peak − median) / (peak + median) with the
 // median of |∂I/∂n| over the profile (0 for a flat or noisy profile, 1 for one isolated edge), closeness
 // = 1 − |s| / (2 searchMm) (an edge far from the template is less likely the organ's).
@@ -52,6 +60,8 @@ struct NormalEdgeOptions {
   double bandMads = 2.0;      // narrower than 3: muscle and spleen are close to liver on CT
   double contrastMads = 2.0;  // the outer side this many robust deviations beyond the inner (see above);
                               // 2 measured best on the test CT (docs/methods/marker-suggestions.md)
+  double plateauMm = 9.0;     // the plateaus' reach beyond each side (0: no plateau check); three voxels
+  double plateauMads = 0.5;   // of the test CT; the tolerance in robust deviations (see above and docs)
 };
 
 struct NormalEdge {
