@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   app.add_option("--frame", o.frame, "Frame shown at start (0-based)")->capture_default_str();
   app.add_flag("--untangle", o.untangle,
                "Repair the tets each pose inverts, as `vesalius pose` does by default (0.3-1 s a frame, so off for playback)");
+  app.add_flag("--restore-volume", o.restoreVolume,
+               "Give each pose the volume skinning loses back, as `vesalius pose` does by default (0.1-0.25 s a frame, "
+               "so off for playback)");
   app.add_option("--skin-opacity", o.skinOpacity, "Opacity of the skin, 0 to 1")->capture_default_str();
   app.add_option("--save-dir", o.saveDir, "Key s writes the shown meshes to DIR/frame_NNNNN_METHOD/");
   app.add_option("--play", o.playEventsPath, "Play a VTK event-recorder file after start");

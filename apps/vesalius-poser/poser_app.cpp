@@ -37,7 +37,7 @@ std::vector<std::string> meshStems(const cli::AnatomyRig& rig) {
 
 int runPoser(const PoserOptions& options) {
   checkOptions(options);
-  const cli::PosingSession session(options.anatomyDir, options.untangle);
+  const cli::PosingSession session(options.anatomyDir, options.untangle, options.restoreVolume);
   const cli::RetargetedMotion motion(options.motionPath, options.mapPath, options.motionLps, session.rig().skeleton);
   if (options.frame < 0 || options.frame >= motion.frameCount())
     throw UsageError("--frame " + std::to_string(options.frame) + " outside 0.." +

@@ -16,6 +16,7 @@ struct PoserOptions {
   std::string saveDir;          // key s writes the shown pose here
   double skinOpacity = 0.3;
   bool untangle = false;         // repair inverted tets per frame (posing/untangle_tets.h): 0.3-1 s a frame
+  bool restoreVolume = false;    // give the skinned tets their volume back (posing/volume_restoration.h): 0.1-0.25 s a frame
   std::string playEventsPath;   // vtkInteractorEventRecorder file played after start
   bool exitAfterPlay = false;
   std::string recordEventsPath; // records this session's events (for new GUI tests)

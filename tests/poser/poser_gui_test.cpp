@@ -3,8 +3,9 @@
 // `vesalius rig` with one tissue inside it (the skin eroded by up to 1 cm of fat, `vesalius fat erode`: the
 // muscle surface of seed 000 §5; 5.4 mm on average, less where the body is thin) and the CMU motion 01_01.
 //  - What the poser shows is what `vesalius pose` writes: after stepping to frame 400 the points of the
-//    skin and tissue actors (saved by key s) equal `pose --frame 400 --method m --no-untangle`'s meshes (the
-//    viewer skins without the tet repair unless --untangle) to 1e-6 mm for
+//    skin and tissue actors (saved by key s) equal `pose --frame 400 --method m --no-restore-volume
+//    --no-untangle`'s meshes (the viewer skins without the volume restoration and the tet repair unless
+//    --restore-volume, --untangle) to 1e-6 mm for
 //    DQS, CoR and LBS, switched live by keys d, c, l in that order; the methods' skins differ.
 //  - The screenshot shows the tissue through the translucent skin: inside the body's silhouette most
 //    pixels have the tissue's red hue blended with the skin's, hardly any the tissue's own, and with an
@@ -101,7 +102,7 @@ TEST(PoserGui, ShowsThePoseCommandsSkinAndTissueForEachMethod) {
   for (const std::string method : {"lbs", "dqs", "cor"}) {
     const std::string posed = dir + "/pose_" + method;
     runCli("pose --anatomy '" + rig + "' --motion '" + kMotion + "' --frame " + std::to_string(kFrame) +
-               " --method " + method + " --no-untangle --out '" + posed + "'",
+               " --method " + method + " --no-restore-volume --no-untangle --out '" + posed + "'",
            dir + "/pose_" + method + ".log");
     const std::string shown = dir + "/shown/frame_00400_" + method;
     for (const std::string mesh : {"skin.obj", "muscles.obj"}) {
@@ -118,6 +119,25 @@ TEST(PoserGui, ShowsThePoseCommandsSkinAndTissueForEachMethod) {
             << " mm\n";
   EXPECT_GT(lbsDqs, 1.0);
   EXPECT_GT(lbsCor, 1.0);
+}
+
+// With --restore-volume --untangle the viewer shows what `vesalius pose` writes by default.
+TEST(PoserGui, RestoringTheVolumeShowsThePoseCommandsDefault) {
+  const std::string dir = freshDir("restored"), rig = sharedRig();
+  const auto run = runVesalius({"--anatomy", rig, "--motion", kMotion, "--frame", std::to_string(kFrame - 3),
+                                "--restore-volume", "--untangle", "--save-dir", dir + "/shown", "--play",
+                                VESALIUS_POSER_EVENTS "/step_and_switch.events", "--exit-after-play", "--window-width",
+                                "600", "--window-height", "600"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string posed = dir + "/pose_cor";
+  runCli("pose --anatomy '" + rig + "' --motion '" + kMotion + "' --frame " + std::to_string(kFrame) +
+             " --method cor --out '" + posed + "'",
+         posed + ".log");
+  for (const std::string mesh : {"skin.obj", "muscles.obj"})
+    EXPECT_LE(maxDistance(io::readTriMesh(dir + "/shown/frame_00400_cor/" + mesh).V,
+                          io::readTriMesh(posed + "/" + mesh).V),
+              1e-6)
+        << mesh;
 }
 
 // A click on the slider jumps to the frame under the mouse: VTK's 2D slider track runs from 0.05 to 0.95
@@ -141,7 +161,7 @@ TEST(PoserGui, SliderClicksShowTheFrameUnderTheMouse) {
     std::snprintf(name, sizeof name, "frame_%05d_lbs", frame);
     const std::string posed = dir + "/pose_" + std::to_string(frame);
     runCli("pose --anatomy '" + rig + "' --motion '" + kMotion + "' --frame " + std::to_string(frame) +
-               " --method lbs --no-untangle --out '" + posed + "'",
+               " --method lbs --no-restore-volume --no-untangle --out '" + posed + "'",
            posed + ".log");
     EXPECT_LE(maxDistance(io::readTriMesh(dir + "/shown/" + name + "/skin.obj").V,
                           io::readTriMesh(posed + "/skin.obj").V),
