@@ -4,7 +4,6 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/makehuman_uv.h"
@@ -17,15 +16,13 @@
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/body_frame.h"
-#include "vesalius/transfer/bone_deformation_into_skin.h"
 #include "vesalius/transfer/bones_inside_skin.h"
 #include "vesalius/transfer/skeleton_placement.h"
 
 #include <Eigen/Geometry>
 
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
+
 #include <iostream>
 #include <map>
 #include <memory>
@@ -197,9 +194,9 @@ transfer::SkinDistanceFunction skinDistances(const TriMesh& skin) {
 // The bones that move inside the skin together (moveBonesInsideSkin), by name: a trunk group (symmetric,
 // seed 000 §8) as one, every other bone mesh alone (the hand's carpals apart from its digits, which the
 // placement already fits bone by bone). Each tissue's unit name is in unitOfTissue. The skull and jaw are
-// no unit: their vertices outside lie in MakeHuman's mouth cavity (a pocket of the skin inside the head),
-// which no similarity of the skull leaves (it was turned by the 20° cap, scaled 1.08, and left 1,187 of its
-// 2,031 outside; docs/methods/skeleton-alignment.md); they are bent inside instead (bendSkullIntoSkin).
+// no unit: their vertices outside lie in MakeHuman's mouth and nasal cavities (skin surfaces inside the
+// head), which no similarity of the skull leaves; it was turned by the 20° cap, scaled 1.08, and left
+// 1,187 of its 2,031 outside (docs/methods/skeleton-alignment.md).
 std::map<std::string, std::vector<std::size_t>> unitsIntoSkin(const ReferenceAnatomy& anatomy,
                                                               std::map<std::string, std::string>& unitOfTissue) {
   std::map<std::string, std::vector<std::size_t>> units;
@@ -239,8 +236,8 @@ MatrixX3d jointsOfBones(const MatrixX3d& V, const MatrixX3d& joints) {
 // smallest similarity change (bones_inside_skin.h; the trunk's groups kept symmetric about the sagittal
 // plane) that keeps the joints near it (`joints`, the placed joint centres) in place, the points fixed to
 // its bones with it. Reports each unit's change and the bone vertices outside the skin before and after.
-void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const transfer::SkinDistanceFunction& skin, const MatrixX3d& joints,
-                         io::Report& report) {
+void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const MatrixX3d& joints, io::Report& report) {
+  const transfer::SkinDistanceFunction skin = skinDistances(anatomy.skin);
   std::map<std::string, std::string> unitOfTissue;
   long before = 0, after = 0;
   nlohmann::json changes;
@@ -264,51 +261,6 @@ void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const transfer::SkinDistance
   report.metric("bones_into_skin", changes);
   report.metric("bone_vertices_outside_skin_before", before);
   report.metric("bone_vertices_outside_skin", after);
-}
-
-// The largest difference (mm) between the displacements U (#V by 3) of two vertices that share an edge of F.
-double largestEdgeDisplacementDifference(const MatrixX3i& F, const MatrixX3d& U) {
-  double largest = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) largest = std::max(largest, (U.row(F(f, c)) - U.row(F(f, (c + 1) % 3))).norm());
-  return largest;
-}
-
-// Rule R6 for the skull and jaw, which no similarity brings inside (unitsIntoSkin): each mesh bent inside
-// the skin by a smooth displacement (bone_deformation_into_skin.h), the skull's way out of MakeHuman's mouth
-// cavity upwards (`up`, the body frame's), the jaw's downwards: the cavity lies between the upper and the
-// lower jaw. No joint or path point is fixed to them (Rajagopal's muscles are the legs' and the pelvis's).
-// Reports each mesh's vertices outside before and after, its largest and RMS move, its enclosed volume's
-// change, the largest difference between the moves of neighbouring vertices, and its mirror asymmetry (R2)
-// before and after.
-void bendSkullIntoSkin(ReferenceAnatomy& anatomy, const transfer::SkinDistanceFunction& skin,
-                       const Eigen::Vector3d& up, io::Report& report) {
-  long before = 0, after = 0;
-  nlohmann::json bends;
-  for (ReferenceTissue& tissue : anatomy.tissues) {
-    if (tissue.group != io::kSkullGroup) continue;
-    transfer::IntoSkinDeformationOptions options;
-    options.preferredDirection = tissue.name == "hat_jaw" ? Eigen::Vector3d(-up) : up;
-    const transfer::IntoSkinDeformation bend = transfer::deformationIntoSkin(tissue.mesh, skin, options);
-    const MatrixX3d bent = tissue.mesh.V + bend.displacement;
-    const double volume = enclosedVolume(tissue.mesh.V, tissue.mesh.F);
-    const Eigen::VectorXd moves = bend.displacement.rowwise().norm();
-    bends[tissue.name] = {{"outside_before", bend.outsideBefore}, {"outside_after", bend.outsideAfter},
-                          {"steps", bend.steps}, {"largest_move_mm", moves.maxCoeff()},
-                          {"rms_move_mm", std::sqrt(moves.squaredNorm() / double(moves.size()))},
-                          {"volume_change_pct", 100.0 * (enclosedVolume(bent, tissue.mesh.F) / volume - 1.0)},
-                          {"largest_neighbour_move_difference_mm",
-                           largestEdgeDisplacementDifference(tissue.mesh.F, bend.displacement)},
-                          {"mirror_asymmetry_mm",
-                           {{"before", transfer::mirrorAsymmetry(tissue.mesh.V, tissue.mesh.F, anatomy.sagittal)},
-                            {"after", transfer::mirrorAsymmetry(bent, tissue.mesh.F, anatomy.sagittal)}}}};
-    tissue.mesh.V = bent;
-    before += bend.outsideBefore;
-    after += bend.outsideAfter;
-  }
-  report.metric("skull_bent_into_skin", bends);
-  report.metric("skull_vertices_outside_skin_before", before);
-  report.metric("skull_vertices_outside_skin", after);
 }
 
 // The joint centres of the placed model: each non-root body's origin (#bodies − roots by 3).
@@ -385,9 +337,7 @@ void runFullBody(const FullBodyOptions& o) {
                                 tissue == firstTissueOfBody.end() ? "" : tissue->second,
                                 paths[m].row(Eigen::Index(p)).transpose()});
     }
-  const transfer::SkinDistanceFunction skin = skinDistances(anatomy.skin);
-  moveBonesInsideSkin(anatomy, skin, placedJoints(model.bodies, placement), report);
-  bendSkullIntoSkin(anatomy, skin, frame.transverseNormal, report);
+  moveBonesInsideSkin(anatomy, placedJoints(model.bodies, placement), report);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
   report.output("reference", o.out);
   report.metric("bones", anatomy.tissues.size());

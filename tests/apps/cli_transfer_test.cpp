@@ -220,10 +220,10 @@ nlohmann::json fullBodyTransfer(const std::string& dir, const std::string& targe
   std::cout << "interior folds " << m["jacobian_interior_nonpositive_cells"] << ", vertices outside the reference "
             << m["reference_outside_vertices"] << ", outside the target " << m["target_outside_vertices"]
             << ", deep vertices pushed out " << m["pushed_out_deep_vertices"] << "\n";
-  // R6 for the reference itself: measured 1,016 of 30,751 tissue vertices outside its own skin (1,018 once),
-  // none of them the skull's or jaw's, bent out of MakeHuman's mouth bag (session 18; 3,047 before, 2,029
-  // of them the skull's and jaw's; 6,423 before the bones were moved inside the skin, session 17).
-  EXPECT_LE(m["reference_outside_vertices"].get<long>(), 1100);
+  // R6 for the reference itself: measured 3,047 of 30,751 tissue vertices outside its own skin, 2,029 of
+  // them the skull's and jaw's in MakeHuman's mouth and nasal cavities (6,423 before the bones were moved
+  // inside the skin, session 17).
+  EXPECT_LE(m["reference_outside_vertices"].get<long>(), 3300);
   return m;
 }
 
@@ -281,8 +281,8 @@ std::pair<double, double> handAndForearmSkinErrors(const ReferenceAnatomy& refer
 // vertex index). What holds: long bones stay straight and the trunk symmetric (R1, R2), every bone maps
 // with a positive determinant, points on bones move with them (R7), and the skin registration, with its
 // articulated stage, puts the hands' and forearms' skin near its true place. What does not yet
-// (docs/methods/anatomy-transfer.md): the tissue vertices outside the target's skin, many of them outside
-// the reference's own (torso, toes, calcanei); the report counts them and this test bounds them.
+// (docs/methods/anatomy-transfer.md): the tissue vertices outside the target's skin, most of them outside
+// the reference's own (the skull's in MakeHuman's mouth); the report counts them and this test bounds them.
 TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const std::string dir = freshDir("full-body");
   const ReferenceAnatomy reference = fullBodyReference(dir);
@@ -310,13 +310,12 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   EXPECT_LT(forearms, 12.0);
   // Known gaps, bounded so that a regression shows. Measured (session 17: bone maps kept inside the eroded
   // skin, and the reference's bones moved inside its own skin): no folded interior cell (minimum 0.017;
-  // session 16: 10, -0.18); 3,121 of 30,751 tissue vertices outside the target's skin (6,159; session 18,
-  // the reference's skull and jaw bent inside: 1,361, folds and deep vertices unchanged); 7 vertices
+  // session 16: 10, -0.18); 3,121 of 30,751 tissue vertices outside the target's skin (6,159); 7 vertices
   // a voxel or more inside the reference skin end outside the target's (250, 242 of them in the trunk): 6
   // at the toes, 1 of the ribs. The bone maps kept inside alone gave 0, 4,820, 17; the moved reference
   // alone 70 folds (at the lumbar spine), 3,659, 95 (docs/methods/anatomy-transfer.md).
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 3);
-  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1500);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 3400);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 25);
 }
 
@@ -324,8 +323,7 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
 // (determinant about 2), and with the skull in it (before session 15) it carried the skull into the face:
 // 213 folded interior cells, 199 of them in the head. Measured now (session 17, bone maps kept inside and
 // the reference's bones moved inside its skin): 12 folds (minimum -0.39; session 16: 39, -0.72; the maps
-// kept inside alone: 0); 3,404 of 30,751 tissue vertices outside the target's skin (6,110; alone 4,905;
-// session 18, the reference's skull and jaw bent inside: 1,619);
+// kept inside alone: 0); 3,404 of 30,751 tissue vertices outside the target's skin (6,110; alone 4,905);
 // 68 deep vertices pushed out (222: spine 157, ribs and scapulae 42, jaw 12, feet 11; alone 77): ribs and
 // scapulae 44, toes 24; the hands' skin 1.3 mm off its true place, the forearms' 11.1 mm. R2 holds; R1 does
 // not yet: the arms' maps take in the muscle (determinants: humerus 2.7, radius 3.0, ulna 3.4) and shear the
@@ -342,7 +340,7 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
   EXPECT_LT(hands, 4.0);
   EXPECT_LT(forearms, 13.0);
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 18);
-  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1800);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 3700);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 90);
 }
 
@@ -352,9 +350,8 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
 // rest of the skin 10.4 mm (ICP and shape matching alone, measured apart: 63, 40 and 7.7 in the trunk).
 // Session 17 (bone maps kept inside, the reference's bones moved inside its skin): 3 deep vertices pushed
 // out (session 16: 255, ribs and scapulae 140, spine 109), 1 folded interior cell (14; minimum -0.03
-// against -0.15), 2,665 of 30,751 tissue vertices outside the target (6,045; session 18, the reference's
-// skull and jaw bent inside: 866, and 1,674 in a run whose reference had 1,018 outside instead of 1,016):
-// as on the thin body's own mesh. The moved reference alone (session 16's bone maps): 88, 64 folds, 3,102.
+// against -0.15), 2,665 of 30,751 tissue vertices outside the target (6,045): as on the thin body's own
+// mesh. The moved reference alone (session 16's bone maps): 88, 64 folds, 3,102.
 TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   const std::string dir = freshDir("full-body-remeshed");
   const ReferenceAnatomy reference = fullBodyReference(dir);
@@ -370,7 +367,7 @@ TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   EXPECT_LT(hands, 6.5);
   EXPECT_LT(forearms, 13.5);
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 5);
-  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1850);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 2950);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 25);
 }
 
