@@ -79,12 +79,8 @@ TEST(NormalEdges, TissueCheckKeepsTheOrgansEdgeBesideAStrongerOne) {
   }
 }
 
-TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
-  // Organ 100 + 10 z/r to r = 20 (brighter towards +z: robust deviation 10 · 0.5 · 1.4826 = 7.4, band 100
-  // ± 14.8), then "muscle" at 92, inside the band, to the cube's edge. Where the organ reads 2 deviations
-  // (14.8) above the muscle (z/r above 0.68) its falling edge at r = 20 is kept although the outer side lies
-  // in the band; where the step is smaller (z/r below 0.5: at most 13) there is no edge of the organ.
-  const Image scan = radialImage([](double r) { return r < kRadius ? 100.0 : 92.0; });
+// The organ (r < kRadius) of `scan` made 10 z/r brighter: brighter towards +z, as a real organ is not uniform.
+Image brighterUpwards(const Image& scan) {
   Image textured = scan;
   const GridGeometry& g = scan.geometry;
   for (int k = 0; k < 64; ++k)
@@ -93,6 +89,16 @@ TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
         const Eigen::Vector3d x = g.indexToWorld(Eigen::Vector3d(i, j, k));
         if (x.norm() < kRadius) textured.at(i, j, k) += float(10 * x.z() / x.norm());
       }
+  return textured;
+}
+
+TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
+  // Organ 100 + 10 z/r to r = 20 (brighter towards +z: robust deviation 10 · 0.5 · 1.4826 = 7.4, band 100
+  // ± 14.8), then "muscle" at 92, inside the band, to the cube's edge. Where the organ reads 2 deviations
+  // (14.8) above the muscle (z/r above 0.68) its falling edge at r = 20 is kept although the outer side lies
+  // in the band; where the step is smaller (z/r below 0.5: at most 13) there is no edge of the organ.
+  const Image scan = radialImage([](double r) { return r < kRadius ? 100.0 : 92.0; });
+  const Image textured = brighterUpwards(scan);
   const MatrixX3d normals = directions(50), points = (kRadius - 3) * normals;
   NormalEdgeOptions options;
   options.sigmaMm = 1.0;
@@ -120,14 +126,7 @@ TEST(NormalEdges, OuterSideInTheOrgansBandCountsWhenTwoDeviationsDarker) {
 // (3.7) darker than the layer (z/r below 0.83; all of z/r below 0.5 asserted) the edge is refused.
 TEST(NormalEdges, PlateauCheckRefusesTheEdgeOfABrighterLayerOnTheOrgan) {
   const Image scan = radialImage([](double r) { return r < kRadius ? 100.0 : r < 24 ? 112.0 : 0.0; });
-  Image textured = scan;
-  const GridGeometry& g = scan.geometry;
-  for (int k = 0; k < 64; ++k)
-    for (int j = 0; j < 64; ++j)
-      for (int i = 0; i < 64; ++i) {
-        const Eigen::Vector3d x = g.indexToWorld(Eigen::Vector3d(i, j, k));
-        if (x.norm() < kRadius) textured.at(i, j, k) += float(10 * x.z() / x.norm());
-      }
+  const Image textured = brighterUpwards(scan);
   const MatrixX3d normals = directions(50), points = (kRadius - 3) * normals;
   NormalEdgeOptions options;
   options.sigmaMm = 0.75;
