@@ -2,14 +2,18 @@
 // poses, and the volume change of a posed tet mesh.
 #pragma once
 
+#include "vesalius/core/error.h"
 #include "vesalius/core/mesh.h"
 
 #include "test_tets.h"
+
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <vector>
 
@@ -42,6 +46,20 @@ inline std::vector<Eigen::Isometry3d> middleJointPose(const BoneBar& bar, const 
   Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
   turn.translate(bar.middleJoint).rotate(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized())).translate(-bar.middleJoint);
   return {Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), turn, turn};
+}
+
+// A per-frame post-step of skinning built on a rest rig, `build(V, T, boneOfVertex)`, refuses with BadInput a
+// bone index list of the wrong length, an inverted rest tet and a tet referring to a missing vertex
+// (src/rest_rig.h).
+template <class Build>
+void expectBadRestRigsRefused(const TetMesh& mesh, const Eigen::VectorXi& boneOfVertex, Build build) {
+  EXPECT_THROW(build(mesh.V, mesh.T, boneOfVertex.head(10)), BadInput);
+  MatrixX4i flipped = mesh.T;
+  std::swap(flipped(5, 2), flipped(5, 3));
+  EXPECT_THROW(build(mesh.V, flipped, boneOfVertex), BadInput);
+  MatrixX4i outside = mesh.T;
+  outside(0, 0) = int(mesh.V.rows());
+  EXPECT_THROW(build(mesh.V, outside, boneOfVertex), BadInput);
 }
 
 // (posed volume - rest volume) / rest volume of the whole tet mesh.

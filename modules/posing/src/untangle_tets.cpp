@@ -2,6 +2,8 @@
 // L-BFGS under the regularised barrier of Garanzha et al. 2021 with ε decreasing.
 #include "vesalius/posing/untangle_tets.h"
 
+#include "rest_rig.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/fem/determinant.h"
 
@@ -206,15 +208,7 @@ TetUntangler::TetUntangler(const MatrixX3d& restV, const MatrixX4i& T, const Eig
       !(o.theta <= 1) || o.maxRounds < 1 || o.maxIterations < 1 || o.history < 1)
     throw UsageError("untangle: options out of range (0 < minVolumeRatio < 1, 0 <= rings <= maxRings, 0 <= theta "
                      "<= 1, rounds, iterations and history >= 1)");
-  if (boneOfVertex.size() != restV.rows())
-    throw BadInput("", "untangle: " + std::to_string(boneOfVertex.size()) + " bone indices for " +
-                           std::to_string(restV.rows()) + " vertices");
-  if (T.size() > 0 && (T.minCoeff() < 0 || T.maxCoeff() >= restV.rows()))
-    throw BadInput("", "untangle: a tet refers to a vertex outside the mesh");
-  restVolume_ = tetVolumes(restV, T);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    if (!(restVolume_[t] > 0))
-      throw BadInput("", "untangle: rest tet " + std::to_string(t) + " is flat or inverted");
+  restVolume_ = checkedRestVolumes("untangle", restV, T, boneOfVertex);
   for (Eigen::Index v = 0; v < restV.rows(); ++v) fixed_[std::size_t(v)] = boneOfVertex[v] >= 0;
   tetsOf_ = vertexTets(T, restV.rows());
 }

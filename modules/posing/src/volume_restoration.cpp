@@ -3,6 +3,8 @@
 // preconditioned with the rest stiffness matrix of the free vertices, factored once.
 #include "vesalius/posing/volume_restoration.h"
 
+#include "rest_rig.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/fem/sparse_cholesky.h"
 #include "vesalius/posing/bone_weights.h"
@@ -118,16 +120,8 @@ VolumeRestorer::VolumeRestorer(const MatrixX3d& restV, const MatrixX4i& T, const
   if (!(o.regionSize >= 0) || !(o.smoothness > 0) || o.iterations < 0 || o.cgIterations < 1 || !(o.cgTolerance > 0))
     throw UsageError("volume restoration: options out of range (region size >= 0, smoothness > 0, iterations >= "
                      "0, CG iterations >= 1, CG tolerance > 0)");
-  if (boneOfVertex.size() != restV.rows())
-    throw BadInput("", "volume restoration: " + std::to_string(boneOfVertex.size()) + " bone indices for " +
-                           std::to_string(restV.rows()) + " vertices");
-  if (T.size() > 0 && (T.minCoeff() < 0 || T.maxCoeff() >= restV.rows()))
-    throw BadInput("", "volume restoration: a tet refers to a vertex outside the mesh");
+  restVolume_ = checkedRestVolumes("volume restoration", restV, T, boneOfVertex);
   if (restV.rows() > 0 && boneOfVertex.maxCoeff() < 0) throw BadInput("", "volume restoration: no bone vertex");
-  restVolume_ = tetVolumes(restV, T);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    if (!(restVolume_[t] > 0))
-      throw BadInput("", "volume restoration: tet " + std::to_string(t) + " is flat or inverted at rest");
   const double size = o.regionSize > 0 ? o.regionSize
                                         : (restV.colwise().maxCoeff() - restV.colwise().minCoeff()).norm() / 20;
   regions_ = gridRegions(restV, T, size);
