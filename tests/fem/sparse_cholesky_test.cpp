@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <iostream>
 #include <vector>
@@ -75,11 +76,35 @@ TEST(SparseCholesky, NestedDissectionSolvesWithLessFill) {
   EXPECT_LT(dissected.factorEntries(), 0.9 * automatic.factorEntries());
 }
 
+// A block built in the factor's row order and solved in place is the solution in that order, on more
+// columns than one parallel block (64) holds.
+TEST(SparseCholesky, SolvesInTheFactorsRowOrder) {
+  const Eigen::SparseMatrix<double> A = gridLaplacian(12);
+  SparseCholesky chol(FillReducingOrdering::nestedDissection);
+  chol.factor(A);
+  const Eigen::VectorXi order = chol.permutation();
+  ASSERT_EQ(order.size(), A.rows());
+  EXPECT_NE(order, Eigen::VectorXi::LinSpaced(A.rows(), 0, int(A.rows()) - 1));  // really reordered
+  Eigen::VectorXi sorted = order;
+  std::sort(sorted.data(), sorted.data() + sorted.size());
+  EXPECT_EQ(sorted, Eigen::VectorXi::LinSpaced(A.rows(), 0, int(A.rows()) - 1));  // a permutation
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 150);
+  Eigen::MatrixXd X = B(order, Eigen::all);
+  chol.solvePermutedInPlace(X);
+  Eigen::MatrixXd solution(A.rows(), B.cols());
+  solution(order, Eigen::all) = X;
+  EXPECT_LT((A * solution - B).norm() / B.norm(), 1e-10);
+  EXPECT_LT((solution - chol.solve(B)).norm() / solution.norm(), 1e-13);
+}
+
 TEST(SparseCholesky, RefusesIndefiniteAndEmptyMatrices) {
   SparseCholesky chol;
   EXPECT_THROW(chol.factor(pathLaplacian(10, 0.0) * -1.0), NumericalFailure);
   EXPECT_THROW(chol.factor(Eigen::SparseMatrix<double>()), NumericalFailure);
   EXPECT_THROW(chol.solve(Eigen::VectorXd(Eigen::VectorXd::Ones(3))), NumericalFailure);
+  EXPECT_THROW(chol.permutation(), NumericalFailure);
+  Eigen::MatrixXd X = Eigen::MatrixXd::Ones(3, 2);
+  EXPECT_THROW(chol.solvePermutedInPlace(X), NumericalFailure);
 }
 
 }  // namespace

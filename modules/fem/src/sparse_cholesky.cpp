@@ -51,8 +51,9 @@ struct SupernodalLlt : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, 
   cholmod_factor* factor() const { return m_cholmodFactor; }
 };
 
-// A CHOLMOD workspace per thread. cholmod_solve2 only reads the factor; its status, allocations and
-// workspace go through the Common it is given, so solves on different Commons may run at once.
+// A CHOLMOD workspace per thread. cholmod_solve2 and the supernodal solves only read the factor; their
+// status, allocations and workspace go through the Common they are given, so solves on different
+// Commons may run at once.
 struct ThreadCommon {
   ThreadCommon() {
     cholmod_start(&common);
@@ -63,29 +64,50 @@ struct ThreadCommon {
   ThreadCommon(const ThreadCommon&) = delete;
   ThreadCommon& operator=(const ThreadCommon&) = delete;
   cholmod_common common;
+  std::vector<double> workspace;  // the supernodal solves' E
 };
+
+ThreadCommon& threadCommon() {
+  static tbb::enumerable_thread_specific<ThreadCommon> commons;
+  keepCholmodOnThisThread();
+  return commons.local();
+}
+
+// Columns first .. first + count − 1 of a column-major block of rows × cols doubles, as CHOLMOD's view.
+cholmod_dense denseColumns(double* data, Eigen::Index rows, Eigen::Index first, Eigen::Index count) {
+  cholmod_dense d{};
+  d.nrow = std::size_t(rows);
+  d.ncol = std::size_t(count);
+  d.nzmax = d.nrow * d.ncol;
+  d.d = d.nrow;
+  d.x = data + first * rows;
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
 
 // Solves one block of columns of B into X with this thread's Common; false if CHOLMOD fails. B and X may
 // be the same matrix: the block is read before it is written.
 bool solveColumns(cholmod_factor* factor, const Eigen::MatrixXd& B, Eigen::Index first, Eigen::Index count,
                   Eigen::MatrixXd& X) {
-  static tbb::enumerable_thread_specific<ThreadCommon> commons;
-  keepCholmodOnThisThread();
-  cholmod_common& common = commons.local().common;
-  cholmod_dense b{};
-  b.nrow = std::size_t(B.rows());
-  b.ncol = std::size_t(count);
-  b.nzmax = b.nrow * b.ncol;
-  b.d = b.nrow;
-  b.x = const_cast<double*>(B.data() + first * B.rows());
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_common& common = threadCommon().common;
+  cholmod_dense b = denseColumns(const_cast<double*>(B.data()), B.rows(), first, count);
   cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
   const bool solved = cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &x, nullptr, &y, &e, &common) && x;
   if (solved) X.middleCols(first, count) = Eigen::Map<const Eigen::MatrixXd>(static_cast<double*>(x->x), B.rows(), count);
   for (cholmod_dense* d : {x, y, e})
     if (d) cholmod_free_dense(&d, &common);
   return solved;
+}
+
+// L Lᵀ X = B in place on one block of columns of X (rows in the factor's order), with this thread's
+// Common and workspace; false if CHOLMOD fails.
+bool solvePermutedColumns(cholmod_factor* factor, Eigen::MatrixXd& X, Eigen::Index first, Eigen::Index count) {
+  ThreadCommon& local = threadCommon();
+  local.workspace.resize(std::max<std::size_t>(1, std::size_t(count) * factor->maxesize));
+  cholmod_dense x = denseColumns(X.data(), X.rows(), first, count);
+  cholmod_dense e = denseColumns(local.workspace.data(), Eigen::Index(local.workspace.size()), 0, 1);
+  return cholmod_super_lsolve(factor, &x, &e, &local.common) && cholmod_super_ltsolve(factor, &x, &e, &local.common);
 }
 
 }  // namespace
@@ -151,6 +173,22 @@ void SparseCholesky::solveInPlace(Eigen::MatrixXd& X) const {
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), kSolveColumns),
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
                       if (!solveColumns(impl_->llt.factor(), X, r.begin(), r.size(), X)) failed = true;
+                    });
+  if (failed) throw NumericalFailure("sparse Cholesky: solve failed");
+}
+
+Eigen::VectorXi SparseCholesky::permutation() const {
+  if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: permutation before factor");
+  return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(impl_->llt.factor()->Perm), impl_->n);
+}
+
+void SparseCholesky::solvePermutedInPlace(Eigen::MatrixXd& X) const {
+  if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: solve before factor");
+  if (X.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
+  std::atomic<bool> failed{false};
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), kSolveColumns),
+                    [&](const tbb::blocked_range<Eigen::Index>& r) {
+                      if (!solvePermutedColumns(impl_->llt.factor(), X, r.begin(), r.size())) failed = true;
                     });
   if (failed) throw NumericalFailure("sparse Cholesky: solve failed");
 }

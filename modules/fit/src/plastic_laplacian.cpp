@@ -49,17 +49,34 @@ Eigen::MatrixXd lowerGram(const Eigen::Ref<const Eigen::MatrixXd>& A, double alp
 
 double weightSquared(Index c) { return kPlasticStrainWeights[std::size_t(c)] * kPlasticStrainWeights[std::size_t(c)]; }
 
-// dst = (src − shift · 1ᵀ)ᵀ, tile by tile in parallel: the reshapes between the tet-major and the
+// dst = (src − shift · 1ᵀ)ᵀ with dst's rows in the given order of src's columns, dst(i, r) =
+// src(r, columns(i)) − shift(r), tile by tile in parallel: the reshapes between the tet-major and the
 // component-major layouts are large transposes (#T by 6K) that would otherwise thrash the cache.
 template <class Src>
-void transposeShifted(const Src& src, const Eigen::Ref<const Eigen::VectorXd>& shift, Eigen::Ref<Eigen::MatrixXd> dst) {
-  tbb::parallel_for(tbb::blocked_range2d<Index>(0, src.rows(), 64, 0, src.cols(), 64),
+void transposeShifted(const Src& src, const Eigen::Ref<const Eigen::VectorXd>& shift, const Eigen::VectorXi& columns,
+                      Eigen::Ref<Eigen::MatrixXd> dst) {
+  tbb::parallel_for(tbb::blocked_range2d<Index>(0, src.rows(), 64, 0, columns.size(), 64),
                     [&](const tbb::blocked_range2d<Index>& r) {
                       const Index r0 = r.rows().begin(), nr = r.rows().size();
                       const Index c0 = r.cols().begin(), nc = r.cols().size();
                       dst.block(c0, r0, nc, nr) =
-                          (src.block(r0, c0, nr, nc).colwise() - shift.segment(r0, nr)).transpose();
+                          (src(Eigen::seqN(r0, nr), columns.segment(c0, nc)).colwise() - shift.segment(r0, nr)).transpose();
                     });
+}
+
+// The column sums of X, over row blocks in parallel and summed in a fixed order.
+Eigen::RowVectorXd columnSums(const Eigen::MatrixXd& X) {
+  constexpr Index kRowBlock = 4096;
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Index>(0, X.rows(), kRowBlock), Eigen::RowVectorXd(Eigen::RowVectorXd::Zero(X.cols())),
+      [&](const tbb::blocked_range<Index>& r, Eigen::RowVectorXd sum) {
+        sum += X.middleRows(r.begin(), r.size()).colwise().sum();
+        return sum;
+      },
+      [](Eigen::RowVectorXd a, const Eigen::RowVectorXd& b) {
+        a += b;
+        return a;
+      });
 }
 
 // True if every tet reaches tet 0 through shared faces (off-diagonal entries of Lsc).
@@ -136,20 +153,46 @@ Eigen::MatrixXd plasticLaplacianNullspace(Index tetCount) {
   return psi;
 }
 
+Eigen::MatrixXd plasticNullspaceProduct(const Eigen::MatrixXd& Z) {
+  const Index m = Z.cols() / 6, C = Z.rows();
+  if (m == 0 || Z.cols() != 6 * m) throw BadInput("", "Z ψ: Z has no columns or not 6 per tet");
+  // Column-major Z (#C by 6#T) read as 6#C by #T: entry (r + C c, t) = Z(r, 6t + c).
+  const Eigen::Map<const Eigen::MatrixXd> Zr(Z.data(), 6 * C, m);
+  constexpr Index kColumnBlock = 1024;
+  const Eigen::VectorXd sums = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Index>(0, m, kColumnBlock), Eigen::VectorXd(Eigen::VectorXd::Zero(6 * C)),
+      [&](const tbb::blocked_range<Index>& r, Eigen::VectorXd sum) {
+        sum.noalias() += Zr.middleCols(r.begin(), r.size()) * Eigen::VectorXd::Ones(r.size());
+        return sum;
+      },
+      [](Eigen::VectorXd a, const Eigen::VectorXd& b) {
+        a += b;
+        return a;
+      });
+  return Eigen::Map<const Eigen::MatrixXd>(sums.data(), C, 6) / std::sqrt(double(m));
+}
+
 SmoothnessBaseSolver::SmoothnessBaseSolver(const Eigen::SparseMatrix<double>& Lsc) : tetCount_(Lsc.rows()), Lsc_(Lsc) {
   if (tetCount_ == 0 || Lsc.cols() != tetCount_) throw BadInput("", "smoothness solver: empty or non-square Lsc");
   if (!faceConnected(Lsc))
     throw BadInput("", "tet mesh is not face-connected; the plastic strain Laplacian has a larger nullspace");
-  if (tetCount_ > 1) groundedCholesky_.factor(Lsc.bottomRightCorner(tetCount_ - 1, tetCount_ - 1));
+  if (tetCount_ == 1) return;
+  groundedCholesky_.factor(Lsc.bottomRightCorner(tetCount_ - 1, tetCount_ - 1));
+  groundedOrder_ = groundedCholesky_.permutation().array() + 1;
 }
 
-// A block with zero-mean columns is stored without its row 0, which is minus the sum of the others.
-// Lsc⁺ b for b ⊥ 1: solve the grounded system for x' (x'_0 = 0), then subtract the mean of [0; x'].
-void SmoothnessBaseSolver::applyScalarPseudoInverse(Eigen::MatrixXd& X) const {
-  if (tetCount_ == 1) return;  // a single tet: Lsc = 0, and zero-mean blocks are empty
-  groundedCholesky_.solveInPlace(X);
-  const Eigen::RowVectorXd mean = X.colwise().sum() / double(tetCount_);
-  X.rowwise() -= mean;
+// A block with zero-mean columns is stored without its row 0, which is minus the sum of the others, and
+// with its rows in the grounded factor's order (row i: tet groundedOrder_(i)), so that the solves need
+// no permuting copies. Lsc⁺ b for b ⊥ 1: solve the grounded system for x' (x'_0 = 0), then subtract the
+// mean of [0; x'].
+Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(Eigen::MatrixXd& X) const {
+  if (tetCount_ == 1) return Eigen::RowVectorXd::Zero(X.cols());  // a single tet: Lsc = 0, blocks are empty
+  groundedCholesky_.solvePermutedInPlace(X);
+  const Eigen::RowVectorXd mean = columnSums(X) / double(tetCount_);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, X.rows(), 4096), [&](const tbb::blocked_range<Index>& r) {
+    X.middleRows(r.begin(), r.size()).rowwise() -= mean;
+  });
+  return mean;
 }
 
 Eigen::MatrixXd SmoothnessBaseSolver::solve(const Eigen::MatrixXd& h, double smoothnessScale) const {
@@ -161,7 +204,7 @@ Eigen::MatrixXd SmoothnessBaseSolver::solve(const Eigen::MatrixXd& h, double smo
   tbb::parallel_for(Index(0), K, [&](Index k) {
     const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> hk(h.col(k).data(), 6, m);
     mean.col(k) = hk.rowwise().mean();
-    transposeShifted(hk.rightCols(m - 1), mean.col(k), X.middleCols(6 * k, 6));
+    transposeShifted(hk, mean.col(k), groundedOrder_, X.middleCols(6 * k, 6));
   });
   applyScalarPseudoInverse(X);
   applyScalarPseudoInverse(X);
@@ -171,29 +214,31 @@ Eigen::MatrixXd SmoothnessBaseSolver::solve(const Eigen::MatrixXd& h, double smo
     Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> yk(y.col(k).data(), 6, m);
     const auto Xk = X.middleCols(6 * k, 6);
     yk.col(0) = -Xk.colwise().sum().transpose();
-    yk.rightCols(m - 1) = Xk.transpose();
+    yk(Eigen::all, groundedOrder_) = Xk.transpose();
     for (Index c = 0; c < 6; ++c)
       yk.row(c).array() = yk.row(c).array() / (smoothnessScale * weightSquared(c)) - mean(c, k);
   });
   return y;
 }
 
-Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z) const {
+Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Zpsi) const {
   const Index m = tetCount_, C = Z.rows();
   if (Z.cols() != 6 * m) throw BadInput("", "smoothness solver: Z has the wrong number of columns");
+  if (Zpsi.rows() != C || Zpsi.cols() != 6) throw BadInput("", "smoothness solver: Z ψ is not #C by 6");
   // Column-major Z (#C by 6#T) read as 6#C by #T: entry (r + C c, t) = Z(r, 6t + c).
   const Eigen::Map<const Eigen::MatrixXd> Zr(Z.data(), 6 * C, m);
   // Z (L²)⁺ Zᵀ = Σ_c G_cᵀ G_c / ξ_c² for G_c = Lsc⁺ (Z_cᵀ − mean), one component at a time in one buffer
   // (#T by #C, a sixth of Z): first touches of fresh memory cost 20 µs a page on a virtual machine, more
-  // than the transpose that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z).
+  // than the transpose that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z). The means
+  // of Z_c's rows are Z ψ_c / √#T. G_c's rows stay in the factor's order: the Gram matrix does not
+  // depend on it.
   Eigen::MatrixXd G(m - 1, C), result = Eigen::MatrixXd::Zero(C, C);
   for (Index c = 0; c < 6; ++c) {
-    const auto Zc = Zr.middleRows(c * C, C);
-    transposeShifted(Zc.rightCols(m - 1), Zc.rowwise().mean(), G);
-    applyScalarPseudoInverse(G);
+    transposeShifted(Zr.middleRows(c * C, C), Zpsi.col(c) / std::sqrt(double(m)), groundedOrder_, G);
+    const Eigen::RowVectorXd mean = applyScalarPseudoInverse(G);
     const double weight = 1.0 / weightSquared(c);
     result += lowerGram(G, weight);
-    result.selfadjointView<Eigen::Lower>().rankUpdate(G.colwise().sum().transpose(), weight);  // row 0: −Σ rows
+    result.selfadjointView<Eigen::Lower>().rankUpdate(mean.transpose(), weight);  // row 0 of G_c: −mean
   }
   return result.selfadjointView<Eigen::Lower>();
 }

@@ -45,8 +45,8 @@ Eigen::MatrixXd multiplyTransposed(const Eigen::MatrixXd& Z, const Eigen::Matrix
 WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z, double mu)
     : base_(&base), Z_(std::move(Z)), psi_(plasticLaplacianNullspace(base.tetCount())) {
   if (Z_.cols() != 6 * base.tetCount()) throw BadInput("", "Woodbury solver: Z has the wrong number of columns");
-  smooth_ = base.sandwich(Z_);
-  Zpsi_ = multiply(Z_, psi_);
+  Zpsi_ = plasticNullspaceProduct(Z_);
+  smooth_ = base.sandwich(Z_, Zpsi_);
   setDamping(mu);
 }
 

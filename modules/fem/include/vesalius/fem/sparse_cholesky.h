@@ -40,6 +40,14 @@ class SparseCholesky {
   void solveInPlace(Eigen::MatrixXd& X) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
+  // The fill-reducing order of the last factor: row i of the factored P A Pᵀ is row permutation()(i) of A.
+  Eigen::VectorXi permutation() const;
+  // X: #N by #K with its rows in the factor's order (row i holds row permutation()(i)), replaced by
+  // (P A Pᵀ)⁻¹ X: the supernodal triangular solves on X's own columns, without solveInPlace's two
+  // permuting copies and its copy of the result (450 columns of the 38,921-tet adjacency Laplacian's
+  // factor on one thread: 0.29 s instead of 0.49 s). For callers that can build X in that order.
+  void solvePermutedInPlace(Eigen::MatrixXd& X) const;
+
   Eigen::Index size() const;
   // Entries of the factor's lower triangle (its fill) from the last analysis; 0 before any.
   double factorEntries() const;
