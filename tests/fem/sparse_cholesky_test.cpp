@@ -77,7 +77,7 @@ TEST(SparseCholesky, NestedDissectionSolvesWithLessFill) {
 }
 
 // A block built in the factor's row order and solved in place is the solution in that order, on more
-// columns than one parallel block (64) holds.
+// columns than one parallel block (256) holds.
 TEST(SparseCholesky, SolvesInTheFactorsRowOrder) {
   const Eigen::SparseMatrix<double> A = gridLaplacian(12);
   SparseCholesky chol(FillReducingOrdering::nestedDissection);
@@ -88,7 +88,7 @@ TEST(SparseCholesky, SolvesInTheFactorsRowOrder) {
   Eigen::VectorXi sorted = order;
   std::sort(sorted.data(), sorted.data() + sorted.size());
   EXPECT_EQ(sorted, Eigen::VectorXi::LinSpaced(A.rows(), 0, int(A.rows()) - 1));  // a permutation
-  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 150);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 300);
   Eigen::MatrixXd X = B(order, Eigen::all);
   chol.solvePermutedInPlace(X);
   Eigen::MatrixXd solution(A.rows(), B.cols());
