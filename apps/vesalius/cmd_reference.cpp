@@ -175,7 +175,7 @@ std::string boneGroup(const std::string& body, const std::string& mesh) {
 // the closest point on it, the side from the signed distance field the transfer report's rules R5, R6
 // use (body_distance.h).
 transfer::SkinDistanceFunction skinDistances(const TriMesh& skin) {
-  const auto field = std::make_shared<const Grid<float>>(bodySignedDistance(skin));
+  const auto field = std::make_shared<const Grid<float>>(bodySignedDistance(skin).signedDistance);
   const auto tree = std::make_shared<const TriangleTree>(skin.V, skin.F);
   return [field, tree](const MatrixX3d& P) {
     const std::vector<ClosestPoint> closest = tree->closest(P);

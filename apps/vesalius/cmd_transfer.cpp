@@ -85,36 +85,51 @@ std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const 
 // may run a voxel past its body surface where the field of view cuts both, and no transfer should be blamed
 // for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
-// field's first-order error at the skin; `deepMm` counts those deeper apart.
-void reportInside(const Grid<float>& bodyDistance, const ReferenceAnatomy& reference,
+// field's first-order error at the skin; `deepMm` counts those deeper apart. Both bodies include their
+// cavities (body_distance.h), whose volumes the report gives, and the vertices that lie in them.
+void reportInside(const BodyDistance& body, const ReferenceAnatomy& reference,
                   const transfer::TransferredAnatomy& result, double deepMm, io::Report& report) {
   std::vector<MatrixX3d> rest;
   for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
-  const std::vector<Eigen::VectorXd> before = signedDistances(bodySignedDistance(reference.skin), rest),
-                                     after = signedDistances(bodyDistance, result.tissues);
-  long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0;
+  const BodyDistance referenceBody = bodySignedDistance(reference.skin);
+  const std::vector<Eigen::VectorXd> before = signedDistances(referenceBody.signedDistance, rest),
+                                     after = signedDistances(body.signedDistance, result.tissues);
+  report.metric("reference_skin_cavities_ml", referenceBody.cavitiesMl);
+  report.metric("target_skin_cavities_ml", body.cavitiesMl);
+  long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0, inCavitiesBefore = 0,
+       inCavitiesAfter = 0;
   double worstPushedOut = 0;
   for (std::size_t t = 0; t < rest.size(); ++t) {
-    long tissuePushedOut = 0, tissueDeep = 0;
+    long tissueOutsideBefore = 0, tissuePushedOut = 0, tissueDeep = 0;
     for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
       ++total;
       outsideAfter += after[t][r] > 0;
       if (before[t][r] > 0) {
-        ++outsideBefore;
+        ++tissueOutsideBefore;
       } else if (after[t][r] > 0) {
         ++tissuePushedOut;
         tissueDeep += before[t][r] <= -deepMm;
         worstPushedOut = std::max(worstPushedOut, after[t][r]);
       }
     }
+    outsideBefore += tissueOutsideBefore;
     pushedOut += tissuePushedOut;
     deepPushedOut += tissueDeep;
+    if (tissueOutsideBefore) report.metric("reference_outside_vertices_" + reference.tissues[t].name, tissueOutsideBefore);
+    const long referenceInCavities = verticesInCavities(referenceBody, rest[t]),
+               targetInCavities = verticesInCavities(body, result.tissues[t]);
+    inCavitiesBefore += referenceInCavities;
+    inCavitiesAfter += targetInCavities;
+    if (referenceInCavities) report.metric("reference_in_cavities_vertices_" + reference.tissues[t].name, referenceInCavities);
+    if (targetInCavities) report.metric("target_in_cavities_vertices_" + reference.tissues[t].name, targetInCavities);
     if (tissuePushedOut) report.metric("pushed_out_vertices_" + reference.tissues[t].name, tissuePushedOut);
     if (tissueDeep) report.metric("pushed_out_deep_vertices_" + reference.tissues[t].name, tissueDeep);
   }
   report.metric("tissue_vertices", total);
   report.metric("reference_outside_vertices", outsideBefore);
   report.metric("target_outside_vertices", outsideAfter);
+  report.metric("reference_in_cavities_vertices", inCavitiesBefore);
+  report.metric("target_in_cavities_vertices", inCavitiesAfter);
   report.metric("pushed_out_vertices", pushedOut);
   report.metric("pushed_out_worst_mm", worstPushedOut);
   report.metric("pushed_out_deep_vertices", deepPushedOut);
@@ -257,10 +272,10 @@ void runTransfer(const TransferOptions& o) {
   endStage("inside mask");
   // Rule R6 in the bone registration: bones are kept inside the eroded skin (without fat, the report's
   // target skin).
-  const Grid<float> erodedDistance = bodySignedDistance(eroded);
+  const BodyDistance erodedBody = bodySignedDistance(eroded);
   endStage("eroded skin distance");
   transfer::AnatomyTransferOptions transferOptions;
-  transferOptions.targetSkinDistance = &erodedDistance;
+  transferOptions.targetSkinDistance = &erodedBody.signedDistance;
   transferOptions.field.laplace.solver =
       o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
   const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside, transferOptions);
@@ -282,7 +297,7 @@ void runTransfer(const TransferOptions& o) {
   report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
-  reportInside(fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedDistance, reference, result, o.voxelSize, report);
+  reportInside(fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, result, o.voxelSize, report);
   reportBones(reference, result, report);
   endStage("checks");
 
