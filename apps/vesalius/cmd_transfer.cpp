@@ -136,7 +136,7 @@ void reportInside(const BodyDistance& body, const ReferenceAnatomy& reference,
   report.metric("deep_means_mm", deepMm);
 }
 
-// Rules R1, R2: long bones' centre lines, the trunk's mirror symmetry, before and after.
+// Rules R1, R2: long bones' centre lines (transfer::isLongBone), the trunk's mirror symmetry, before and after.
 void reportBones(const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result, io::Report& report) {
   nlohmann::json bones = nlohmann::json::array();
   for (const transfer::BoneGroupMap& group : result.boneGroups) {
@@ -159,6 +159,7 @@ void reportBones(const ReferenceAnatomy& reference, const transfer::TransferredA
     } else {
       for (const int t : group.tissues) {
         const MatrixX3d& rest = reference.tissues[t].mesh.V;
+        if (!transfer::isLongBone(rest)) continue;
         g["centre_line_deviation"][reference.tissues[t].name] = {
             {"reference", transfer::centreLineDeviation(rest, rest)},
             {"interpolated", transfer::centreLineDeviation(rest, result.interpolated[t])},

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <iostream>
 
@@ -116,6 +118,17 @@ TEST(AnatomyTransfer, BonesStayStraightAndTheTrunkSymmetric) {
       const Eigen::Vector3d index = inside.geometry.worldToIndex(result.tissues[t].row(r).transpose()).array().round();
       ASSERT_TRUE(inside.at(int(index.x()), int(index.y()), int(index.z()))) << body.tissues[t].name << " vertex " << r;
     }
+}
+
+// R1 applies to long bones: a shaft 8.6 times as long as it is wide is one, turned any way; a patella-like
+// lump is not, nor a bone at the 3x threshold's short side (2.9).
+TEST(AnatomyChecks, LongBonesHaveAShaft) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const MatrixX3d femur = ellipsoid(3, {7, 7, 60}, {40, 0, -60}).V * turn.transpose();
+  EXPECT_TRUE(isLongBone(femur));
+  EXPECT_FALSE(isLongBone(ellipsoid(3, {25, 24, 12}, {0, 0, 0}).V));
+  EXPECT_FALSE(isLongBone(ellipsoid(3, {5, 4, 14.5}, {0, 0, 0}).V));
+  EXPECT_TRUE(isLongBone(ellipsoid(3, {5, 4, 15.5}, {0, 0, 0}).V));
 }
 
 TEST(AnatomyTransfer, TheSpineStaysInsideADentedBack) {

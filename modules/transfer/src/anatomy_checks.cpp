@@ -44,6 +44,14 @@ double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int s
   return worst / (movedAlong.maxCoeff() - movedAlong.minCoeff());
 }
 
+bool isLongBone(const MatrixX3d& V, double minElongation) {
+  if (V.rows() < 2) return false;
+  const PrincipalAxes axes = principalAxes(V);
+  const MatrixX3d local = (V.rowwise() - axes.centroid.transpose()) * axes.axes;
+  const Eigen::Vector3d extent = local.colwise().maxCoeff() - local.colwise().minCoeff();
+  return extent[0] >= minElongation * std::max(extent[1], extent[2]);
+}
+
 double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plane) {
   const Eigen::Vector3d n = plane.normal.normalized();
   const Eigen::VectorXd side = (V.rowwise() - plane.point.transpose()) * n;

@@ -17,6 +17,14 @@ namespace vesalius::transfer {
 // maps centroids to centroids, changes the value only by the change of scale: a bent bone shows up.
 double centreLineDeviation(const MatrixX3d& reference, const MatrixX3d& V, int slices = 20);
 
+// Whether R1's centre line applies to the bone V (#V by 3): a long bone, whose extent along its principal
+// axis is at least `minElongation` times its largest extent across it. A short or flat bone (patella,
+// talus, carpals, pelvis) has no shaft, and the slabs' centroids of one about as long as it is wide follow
+// its outline, not a centre line (the talus reads 26 % of its length, the patella 38 %). Rajagopal's
+// femur, tibia, fibula, humerus, radius and ulna measure 5.2–12.3 and metacarpals II–V 3.5–4.5; the
+// phalanges 1.5–3.2 and the foot's combined meshes 1.7–2.3.
+bool isLongBone(const MatrixX3d& V, double minElongation = 3.0);
+
 // R2, trunk symmetric: the mean distance (mm) from the mesh's vertices mirrored in `plane` to the mesh.
 // 0 for a mesh that is its own mirror image.
 double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plane);
