@@ -1,12 +1,14 @@
-// Bone registration (seed 000 §8): affine and sagittally symmetric least-squares maps.
+// Bone registration (seed 000 §8): affine, sagittally symmetric and long-bone least-squares maps.
 #include "vesalius/transfer/bone_registration.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/transfer/anatomy_checks.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <random>
 
 using namespace vesalius;
@@ -29,6 +31,26 @@ MatrixX3d mirror(const MatrixX3d& P, const Plane& plane) {
 }
 
 Plane plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) { return {point, normal.normalized()}; }
+
+// A shaft 200 mm long along z, 8 mm in radius, its centre line bowed 20 mm towards x at mid-length.
+MatrixX3d bowedShaft() {
+  MatrixX3d P(81 * 24, 3);
+  for (int k = 0; k <= 80; ++k)
+    for (int j = 0; j < 24; ++j) {
+      const double z = -100 + 2.5 * k, angle = 2 * M_PI * j / 24;
+      P.row(24 * k + j) << 20 * (1 - z * z / 1e4) + 8 * std::cos(angle), 8 * std::sin(angle), z;
+    }
+  return P;
+}
+
+// A turn and shift after scaling by `along` on z and `across` on x and y.
+AffineMap limbMap(double along, double across) {
+  AffineMap map;
+  map.A = Eigen::AngleAxisd(0.6, Eigen::Vector3d(2, -1, 1).normalized()).toRotationMatrix() *
+          Eigen::Vector3d(across, across, along).asDiagonal();
+  map.t << 12, -30, 45;
+  return map;
+}
 
 }  // namespace
 
@@ -84,6 +106,30 @@ TEST(BoneRegistration, FlatBoneGetsTheUniformScaleAcrossItsPlane) {
   EXPECT_LT((fit.apply(P) - truth.apply(P)).cwiseAbs().maxCoeff(), 1e-4);
 }
 
+// A thinner limb: the bone 10 % longer and 20 % more slender, turned; the long bone's map recovers it.
+TEST(BoneRegistration, LongBoneFitRecoversASlenderScaling) {
+  const MatrixX3d P = bowedShaft();
+  const AffineMap truth = limbMap(1.1, 0.8);
+  const AffineMap fit = fitLongBoneMap(P, truth.apply(P));
+  EXPECT_LT((fit.A - truth.A).norm(), 1e-8);
+  EXPECT_LT((fit.t - truth.t).norm(), 1e-6);
+}
+
+// A muscular limb: the interpolation widens the shaft 1.6-fold across and stretches it 1.2-fold along.
+// The affine fit takes the widening in and the bow grows by 1.6 / 1.2 relative to the length (rule R1's
+// centre line 3.9 % -> 5.2 %); the long bone's map keeps one scale, about the length's, and the bow.
+TEST(BoneRegistration, LongBoneFitDoesNotTakeInTheMuscle) {
+  const MatrixX3d P = bowedShaft(), Q = limbMap(1.2, 1.6).apply(P);
+  const double reference = centreLineDeviation(P, P);
+  EXPECT_NEAR(reference, 0.039, 0.002);
+  EXPECT_NEAR(centreLineDeviation(P, fitAffineMap(P, Q).apply(P)), reference * 1.6 / 1.2, 1e-5);  // the ridge: 1e-6
+  const AffineMap fit = fitLongBoneMap(P, Q);
+  EXPECT_NEAR(centreLineDeviation(P, fit.apply(P)), reference, 1e-9);
+  const Eigen::Vector3d scales = Eigen::JacobiSVD<Eigen::Matrix3d>(fit.A).singularValues();
+  EXPECT_NEAR(scales.maxCoeff(), scales.minCoeff(), 1e-9);
+  EXPECT_NEAR(scales.mean(), 1.2, 0.02);
+}
+
 TEST(BoneRegistration, MapPlaneCarriesThePlane) {
   AffineMap map;
   map.A << 2, 0, 0, 0, 1, 0, 0, 0, 1;
@@ -98,7 +144,7 @@ TEST(BoneRegistration, MapPlaneCarriesThePlane) {
 
 TEST(BoneRegistration, AWeightCountsAsTheRowRepeated) {
   // Weight 3 on the first 20 points gives the map fitted with those points three times over, for the
-  // free and the symmetric fit, though the attractors fit no map.
+  // free, the symmetric and the long bone's fit, though the attractors fit no map.
   const MatrixX3d P = randomPoints(100, 8), Q = 1.2 * P + 3.0 * randomPoints(100, 9, 1.0);
   Eigen::VectorXd weights = Eigen::VectorXd::Ones(100);
   weights.head(20).setConstant(3);
@@ -114,6 +160,7 @@ TEST(BoneRegistration, AWeightCountsAsTheRowRepeated) {
   const AffineMap symmetricRepeated = fitSymmetricAffineMap(repeatedP, repeatedQ, reference, target);
   EXPECT_LT((symmetricWeighted.A - symmetricRepeated.A).norm(), 1e-9);
   EXPECT_LT((symmetricWeighted.t - symmetricRepeated.t).norm(), 1e-9);
+  EXPECT_LT((fitLongBoneMap(P, Q, weights).A - fitLongBoneMap(repeatedP, repeatedQ).A).norm(), 1e-9);
 }
 
 TEST(BoneRegistration, BadInputIsRefused) {
@@ -125,6 +172,7 @@ TEST(BoneRegistration, BadInputIsRefused) {
   EXPECT_THROW(fitAffineMap(P, Q), BadInput);
   const MatrixX3d same = MatrixX3d::Constant(10, 3, 1.0);
   EXPECT_THROW(fitAffineMap(same, same), BadInput);
+  EXPECT_THROW(fitLongBoneMap(same, same), BadInput);
   Eigen::VectorXd weights = Eigen::VectorXd::Ones(10);
   EXPECT_THROW(fitAffineMap(P, P, weights.head(9)), BadInput);
   weights[2] = 0;

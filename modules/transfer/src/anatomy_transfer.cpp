@@ -25,7 +25,8 @@ MatrixX3d stackRows(const std::vector<const MatrixX3d*>& parts) {
   return stacked;
 }
 
-// Bone tissues gathered into their groups, in the order the groups first appear.
+// Bone tissues gathered into their groups, in the order the groups first appear; a free group of long
+// bones only is marked so.
 std::vector<BoneGroupMap> boneGroups(const ReferenceAnatomy& reference) {
   std::vector<BoneGroupMap> groups;
   std::map<std::string, int> index;
@@ -34,8 +35,9 @@ std::vector<BoneGroupMap> boneGroups(const ReferenceAnatomy& reference) {
     if (tissue.kind != TissueKind::Bone) continue;
     const std::string name = tissue.group.empty() ? tissue.name : tissue.group;
     const auto [it, inserted] = index.emplace(name, int(groups.size()));
-    if (inserted) groups.push_back({name, {}, tissue.symmetric, {}, 0});
+    if (inserted) groups.push_back({name, {}, tissue.symmetric, !tissue.symmetric, {}, 0});
     groups[it->second].tissues.push_back(t);
+    groups[it->second].longBones = groups[it->second].longBones && isLongBone(tissue.mesh.V);
   }
   return groups;
 }
@@ -75,7 +77,8 @@ MatrixX3d toMatrix(const std::vector<Eigen::Vector3d>& rows) {
 
 AffineMap fitGroupMap(const BoneGroupMap& group, const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights,
                       const Plane& referencePlane, const Plane& targetPlane) {
-  return group.symmetric ? fitSymmetricAffineMap(P, Q, weights, referencePlane, targetPlane) : fitAffineMap(P, Q, weights);
+  if (group.symmetric) return fitSymmetricAffineMap(P, Q, weights, referencePlane, targetPlane);
+  return group.longBones ? fitLongBoneMap(P, Q, weights) : fitAffineMap(P, Q, weights);
 }
 
 // Rule R6 in the bone registration: the seed leaves collisions to "standard collision handling routines"

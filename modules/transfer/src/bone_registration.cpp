@@ -2,6 +2,7 @@
 #include "vesalius/transfer/bone_registration.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/fit/similarity_transform.h"
 
 #include <Eigen/Dense>
 
@@ -67,6 +68,44 @@ AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::Vect
   AffineMap map;
   map.A = ridgeLinearFit(P.rowwise() - cp, Q.rowwise() - cq, weights);
   map.t = cq.transpose() - map.A * cp.transpose();
+  return map;
+}
+
+AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q) {
+  return fitLongBoneMap(P, Q, Eigen::VectorXd::Ones(P.rows()));
+}
+
+// Alternating from the least-squares similarity (fit::fitSimilarity, Umeyama): the rotation by weighted
+// Procrustes of the scaled bone D X onto Y, then the two scales in closed form given the rotation (with
+// z = Rᵀ y: s_along = Σ w (a·x)(a·z) / Σ w (a·x)², s_across = Σ w x⊥·z⊥ / Σ w |x⊥|², or one scale for
+// both, the similarity's, where s_across would exceed s_along).
+AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights) {
+  checkPairs(P, Q, weights);
+  const Eigen::RowVector3d cp = weightedMean(P, weights), cq = weightedMean(Q, weights);
+  const MatrixX3d X = P.rowwise() - cp, Y = Q.rowwise() - cq;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(X.transpose() * weights.asDiagonal() * X);
+  const Eigen::Vector3d axis = spread.eigenvectors().col(2);  // eigenvalues ascending
+  const Eigen::VectorXd along = X * axis;
+  const MatrixX3d across = X - along * axis.transpose();
+  const double alongSpread = along.cwiseAbs2().dot(weights), acrossSpread = across.rowwise().squaredNorm().dot(weights);
+  const fit::SimilarityTransform similarity = fit::fitSimilarity(X, Y, weights, true);
+  Eigen::Matrix3d R = similarity.rotation, A = similarity.scale * R;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const MatrixX3d Z = Y * R;  // rows Rᵀ y
+    const Eigen::VectorXd zAlong = Z * axis;
+    const double alongFit = along.cwiseProduct(zAlong).dot(weights);
+    const double acrossFit = across.cwiseProduct(Z - zAlong * axis.transpose()).rowwise().sum().dot(weights);
+    double sAlong = alongFit / alongSpread, sAcross = acrossSpread > 0 ? acrossFit / acrossSpread : sAlong;
+    if (sAcross > sAlong) sAlong = sAcross = (alongFit + acrossFit) / (alongSpread + acrossSpread);
+    const Eigen::Matrix3d D = sAlong * axis * axis.transpose() + sAcross * (Eigen::Matrix3d::Identity() - axis * axis.transpose());
+    R = fit::fitSimilarity(X * D, Y, weights, false).rotation;
+    const Eigen::Matrix3d previous = A;
+    A = R * D;
+    if ((A - previous).norm() < 1e-12 * A.norm()) break;
+  }
+  AffineMap map;
+  map.A = A;
+  map.t = cq.transpose() - A * cp.transpose();
   return map;
 }
 

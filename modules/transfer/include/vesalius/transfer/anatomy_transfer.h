@@ -8,7 +8,10 @@
 //      position (bone_registration.h), from its vertices at least a cell deep inside the reference skin
 //      (all of them if fewer than 4 are), as the field is extrapolated only a few cells beyond the skin;
 //      symmetric groups (the trunk) by maps symmetric about the sagittal
-//      plane, the target's plane being the image of the reference's under the trunk's joint affine fit.
+//      plane, the target's plane being the image of the reference's under the trunk's joint affine fit;
+//      groups of long bones only (isLongBone, anatomy_checks.h) by a rotation and two scales, along the
+//      bone and across it, the one across no larger, as the muscle around a limb does not widen its
+//      bones (bone_registration.h).
 //      Given the target's eroded skin as a signed distance, the fit is reweighted so that the bones stay
 //      inside it (rule R6): the springs of vertices the map puts outside, or within a margin, grow stiffer.
 //   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
@@ -46,6 +49,7 @@ struct BoneGroupMap {
   std::string group;          // the tissues' group, or the tissue's name for a bone of its own
   std::vector<int> tissues;   // indices into ReferenceAnatomy::tissues
   bool symmetric = false;
+  bool longBones = false;     // not symmetric, and every tissue a long bone (isLongBone): fitLongBoneMap
   AffineMap map;
   double rmsToAttractorMm = 0;  // RMS distance of the mapped bone to its interpolated position
 };

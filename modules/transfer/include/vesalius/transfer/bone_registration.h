@@ -18,6 +18,17 @@
 // The target's sagittal plane is the image of the reference's under the one affine map that best fits all
 // symmetric bones together (targetSagittalPlane), so that every trunk bone shares one plane.
 //
+// Long bones (a group of them only, as the forearm's radius or the shank's tibia and fibula) move by a
+// rotation, one scale along the bone's axis and one across it, the latter no larger than the former: §8,
+// "changes of character size mainly scale up or down the bones, while the changes of soft tissue do not
+// modify the bones". The interpolated field of a limb with more muscle widens the bone across its axis and
+// not along it; an affine map takes that in (the muscular body's forearms tripled their volume and their
+// centre lines bent from 4 to 6 % of their length: the map scales a slightly bowed shaft's bow by its
+// scale across, the length by its scale along). Capped at the scale along, a bone is at most as stout
+// as the reference's and its centre line no more bent. Below the cap the scale across stays free: a thin
+// limb leaves no room at the subcutaneous epicondyles and styloids for a bone as stout as the reference's
+// (a similarity there shortened the thin body's humerus by 12 % to keep it inside, rule R6).
+//
 // Flat or thin bones leave some directions of A undetermined; a ridge term λ |A − s I|² with
 // λ = 1e-6 · trace of the points' covariance and s the ratio of the two point clouds' RMS radii picks the
 // uniform scale there and changes a well-determined fit by less than 1e-6 relative.
@@ -43,6 +54,13 @@ AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q);
 // The same with a weight per point (#P, positive): min Σ_i w_i |A p_i + t − q_i|² (the springs of
 // different stiffness). Throws BadInput also on a weight that is not positive and finite.
 AffineMap fitAffineMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights);
+
+// A long bone's map (see above): A = R (s_along a aᵀ + s_across (I − a aᵀ)), a the (weighted) principal
+// axis of P, R a rotation, s_across ≤ s_along; the least-squares fit in that class, unweighted and
+// weighted (a local minimum, reached by alternating from the least-squares similarity). Same inputs and
+// errors as fitAffineMap.
+AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q);
+AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::VectorXd& weights);
 
 // The least-squares affine map that is symmetric from `reference` to `target` (see above), unweighted
 // and weighted.
