@@ -193,16 +193,14 @@ transfer::SkinDistanceFunction skinDistances(const TriMesh& skin) {
 
 // The bones that move inside the skin together (moveBonesInsideSkin), by name: a trunk group (symmetric,
 // seed 000 §8) as one, every other bone mesh alone (the hand's carpals apart from its digits, which the
-// placement already fits bone by bone). Each tissue's unit name is in unitOfTissue. The skull and jaw are
-// no unit: their vertices outside lie in MakeHuman's mouth and nasal cavities (skin surfaces inside the
-// head), which no similarity of the skull leaves; it was turned by the 20° cap, scaled 1.08, and left
-// 1,187 of its 2,031 outside (docs/methods/skeleton-alignment.md).
+// placement already fits bone by bone). Each tissue's unit name is in unitOfTissue. The skull and jaw
+// (one symmetric unit) need the skin's mouth counted as inside (body_distance.h): 2,031 of their vertices
+// lie in it, which no similarity of the skull leaves (docs/methods/skeleton-alignment.md).
 std::map<std::string, std::vector<std::size_t>> unitsIntoSkin(const ReferenceAnatomy& anatomy,
                                                               std::map<std::string, std::string>& unitOfTissue) {
   std::map<std::string, std::vector<std::size_t>> units;
   for (std::size_t t = 0; t < anatomy.tissues.size(); ++t) {
     const ReferenceTissue& tissue = anatomy.tissues[t];
-    if (tissue.group == io::kSkullGroup) continue;
     unitOfTissue[tissue.name] = tissue.symmetric ? tissue.group : tissue.name;
     units[unitOfTissue[tissue.name]].push_back(t);
   }

@@ -224,12 +224,13 @@ nlohmann::json fullBodyTransfer(const std::string& dir, const std::string& targe
   std::cout << "interior folds " << m["jacobian_interior_nonpositive_cells"] << ", vertices outside the reference "
             << m["reference_outside_vertices"] << ", outside the target " << m["target_outside_vertices"]
             << ", deep vertices pushed out " << m["pushed_out_deep_vertices"] << "\n";
-  // R6 for the reference itself, its skin's cavities (mouth, eye sockets) counted as inside: measured
-  // 1,154 of 30,751 tissue vertices outside its own skin, 138 of them the skull's and jaw's (3,047 and
-  // 2,031 before the cavities were sealed; 6,423 before the bones were moved inside the skin, session 17).
-  // The cavities measure 264 ml (mouth 230 ml, eye sockets 2 x 12 ml at the grid's 2.5 mm voxels).
-  EXPECT_LE(m["reference_outside_vertices"].get<long>(), 1200);
-  EXPECT_LE(m.value("reference_outside_vertices_hat_skull", 0L) + m.value("reference_outside_vertices_hat_jaw", 0L), 160);
+  // R6 for the reference itself, its skin's cavities (mouth, eye sockets) counted as inside and the skull
+  // and jaw then moved inside like the other bones: measured 1,016 of 30,751 tissue vertices outside its
+  // own skin, none of them the skull's or jaw's (session 18: 3,047, 2,031 of them the skull's and jaw's in
+  // the mouth; 6,423 before the bones were moved inside the skin, session 17). The cavities measure 264 ml
+  // (mouth 230 ml, eye sockets 2 x 12 ml at the grid's 2.5 mm voxels).
+  EXPECT_LE(m["reference_outside_vertices"].get<long>(), 1100);
+  EXPECT_LE(m.value("reference_outside_vertices_hat_skull", 0L) + m.value("reference_outside_vertices_hat_jaw", 0L), 20);
   EXPECT_NEAR(m["reference_skin_cavities_ml"].get<double>(), 264.0, 30.0);
   // In the target's cavities: the skull and jaw in the mouth (measured 1,895-1,914 vertices) and a few
   // others where the target's skin makes a pocket (ribs in the muscular body's left armpit 33, toes 22-78).
@@ -323,37 +324,39 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   EXPECT_LT(hands, 5.0);
   EXPECT_LT(forearms, 12.0);
   // Known gaps, bounded so that a regression shows. Measured (session 19, the skins' cavities counted as
-  // inside): 2 folded interior cells (minimum -0.016; session 17: 0, 0.017; session 16: 10, -0.18); 1,162 of
-  // 30,751 tissue vertices outside the target's skin (session 17: 3,121; session 16: 6,159); 1 vertex a
+  // inside, the skull moved inside, the long bones' maps): 1 folded interior cell (minimum -0.0001; session
+  // 17: 0, 0.017; session 16: 10, -0.18); 1,113 of 30,751 tissue vertices outside the target's skin
+  // (session 17: 3,121; session 16: 6,159); 1 vertex a
   // voxel or more inside the reference skin ends outside the target's, of the ribs (7; 250, 242 of them in
   // the trunk). Session 17's steps alone: the bone maps kept inside 0, 4,820, 17; the moved reference 70
   // folds (at the lumbar spine), 3,659, 95 (docs/methods/anatomy-transfer.md).
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 3);
-  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1250);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1200);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 5);
 }
 
 // The same reference into the muscular MakeHuman body, whose chest is larger: the trunk's map grows
 // (determinant about 2), and with the skull in it (before session 15) it carried the skull into the face:
 // 213 folded interior cells, 199 of them in the head. Measured now (session 19, the skins' cavities counted
-// as inside): 3 folds (minimum -0.21; session 17: 12, -0.39; session 16: 39, -0.72); 1,204 of 30,751 tissue
-// vertices outside the target's skin (3,404; 6,110); 1 deep vertex pushed out, of the skull (68: ribs and
-// scapulae 44, toes 24; 222); the hands' skin 1.3 mm off its true place, the forearms' 11.1 mm. R2 holds; R1 does
-// not yet: the arms' maps take in the muscle (determinants: humerus 2.7, radius 3.0, ulna 3.4) and shear the
-// forearm bones' centre lines; so only R2 is asserted here.
+// as inside, the skull moved inside, the long bones' maps): 3 folds (minimum -0.21; session 17: 12, -0.39;
+// session 16: 39, -0.72); 1,098 of 30,751 tissue vertices outside the target's skin (3,404; 6,110); no
+// deep vertex pushed out (68: ribs and scapulae 44, toes 24; 222); the hands' skin 1.3 mm off its true place, the forearms' 11.1 mm. R1 holds
+// since the long bones' maps keep their width to their length (session 19, fitLongBoneMap): the arms'
+// affine maps had taken in the muscle (determinants humerus 2.5, radius 2.6, ulna 3.4) and bowed the
+// forearm bones' centre lines to 5.7-6.2 % of their length (reference 4.0-4.3 %).
 TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
   const std::string dir = freshDir("full-body-muscular");
   const ReferenceAnatomy reference = fullBodyReference(dir);
   const std::string muscular = "mh_male_young_muscular_body.obj";
   const nlohmann::json m =
       fullBodyTransfer(dir, std::string(VESALIUS_TESTDATA) + "/body/shapes/" + muscular, "makehuman");
-  expectSymmetric(m["bone_groups"]);
+  EXPECT_EQ(expectStraightAndSymmetric(m["bone_groups"]), 22);
   EXPECT_GT(expectPointsStayOnTheirBones(reference, io::readReferenceAnatomy(dir + "/out")), 20);
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(muscular));
   EXPECT_LT(hands, 4.0);
   EXPECT_LT(forearms, 13.0);
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 5);
-  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1300);
+  EXPECT_LE(m["target_outside_vertices"].get<long>(), 1200);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 5);
 }
 
@@ -365,8 +368,9 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
 // out (session 16: 255, ribs and scapulae 140, spine 109), 1 folded interior cell (14; minimum -0.03
 // against -0.15), 2,665 of 30,751 tissue vertices outside the target (6,045): as on the thin body's own
 // mesh. The moved reference alone (session 16's bone maps): 88, 64 folds, 3,102. Session 19 (the skins'
-// cavities counted as inside): no deep vertex pushed out, no folded interior cell (minimum 0.007), 687
-// tissue vertices outside the target.
+// cavities counted as inside, the skull moved inside, the long bones' maps): 5 deep vertices pushed out,
+// of the skull (0 before the skull was moved inside the reference skin), no folded interior cell (minimum
+// 0.007), 673 tissue vertices outside the target.
 TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   const std::string dir = freshDir("full-body-remeshed");
   const ReferenceAnatomy reference = fullBodyReference(dir);
@@ -383,7 +387,7 @@ TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   EXPECT_LT(forearms, 13.5);
   EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 2);
   EXPECT_LE(m["target_outside_vertices"].get<long>(), 750);
-  EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 5);
+  EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 10);
 }
 
 }  // namespace vesalius::test
