@@ -170,16 +170,9 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
 }
 
 void SparseCholesky::solveInPlace(Eigen::MatrixXd& X) const {
-  if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: solve before factor");
-  if (X.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
-  // Blocks of columns in parallel (seed 002 §3.4: the many right-hand sides of Z); each column's
-  // solution is the same whatever the threads.
-  std::atomic<bool> failed{false};
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), kSolveColumns),
-                    [&](const tbb::blocked_range<Eigen::Index>& r) {
-                      if (!solveColumns(impl_->llt.factor(), X, r.begin(), r.size(), X)) failed = true;
-                    });
-  if (failed) throw NumericalFailure("sparse Cholesky: solve failed");
+  solveBlocks(X, kSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
+    return solveColumns(impl_->llt.factor(), X, first, count, X);
+  });
 }
 
 Eigen::VectorXi SparseCholesky::permutation() const {
@@ -188,12 +181,21 @@ Eigen::VectorXi SparseCholesky::permutation() const {
 }
 
 void SparseCholesky::solvePermutedInPlace(Eigen::MatrixXd& X) const {
+  solveBlocks(X, kPermutedSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
+    return solvePermutedColumns(impl_->llt.factor(), X, first, count);
+  });
+}
+
+// Blocks of `blockColumns` columns of X in parallel (seed 002 §3.4: the many right-hand sides of Z);
+// each column's solution is the same whatever the threads.
+template <class SolveBlock>
+void SparseCholesky::solveBlocks(const Eigen::MatrixXd& X, Eigen::Index blockColumns, SolveBlock solveBlock) const {
   if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: solve before factor");
   if (X.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
   std::atomic<bool> failed{false};
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), kPermutedSolveColumns),
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), blockColumns),
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
-                      if (!solvePermutedColumns(impl_->llt.factor(), X, r.begin(), r.size())) failed = true;
+                      if (!solveBlock(r.begin(), r.size())) failed = true;
                     });
   if (failed) throw NumericalFailure("sparse Cholesky: solve failed");
 }

@@ -53,6 +53,11 @@ class SparseCholesky {
   double factorEntries() const;
 
  private:
+  // Checks X against the factor, then solveBlock(first, count) on blocks of its columns in parallel;
+  // throws NumericalFailure if any block fails.
+  template <class SolveBlock>
+  void solveBlocks(const Eigen::MatrixXd& X, Eigen::Index blockColumns, SolveBlock solveBlock) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
