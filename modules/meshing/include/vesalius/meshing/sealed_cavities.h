@@ -11,6 +11,9 @@
 // read off the signed distance, which is exact near the surface: a voxel outside the surface is in the
 // dilation where its distance is below the ball's radius r, and in the closing where every voxel centre
 // within r of it is in the dilation. On a grid the opening width holds to within about a voxel.
+// Not segmentation::closeMm and fillHoles3d: those are ITK's (meshing stays free of it), and on the
+// full body's 46M-voxel grid they took 6-13 s a call against 0.6 s here, where only the voxels within r
+// of the surface need the ball test.
 #pragma once
 
 #include "vesalius/core/grid.h"
