@@ -97,6 +97,26 @@ TEST(SparseCholesky, SolvesInTheFactorsRowOrder) {
   EXPECT_LT((solution - chol.solve(B)).norm() / solution.norm(), 1e-13);
 }
 
+// The row-major block in the factor's order gives the same solution as the column-major one, on two
+// parallel blocks of columns (300 > 256) that share each row.
+TEST(SparseCholesky, SolvesRowMajorBlocksInTheFactorsRowOrder) {
+  const Eigen::SparseMatrix<double> A = gridLaplacian(12);
+  SparseCholesky chol(FillReducingOrdering::nestedDissection);
+  chol.factor(A);
+  const Eigen::VectorXi order = chol.permutation();
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 300);
+  RowMajorMatrixXd X = B(order, Eigen::all);
+  chol.solvePermutedInPlace(X);
+  Eigen::MatrixXd solution(A.rows(), B.cols());
+  solution(order, Eigen::all) = X;
+  EXPECT_LT((A * solution - B).norm() / B.norm(), 1e-10);
+  Eigen::MatrixXd columnMajor = B(order, Eigen::all);
+  chol.solvePermutedInPlace(columnMajor);
+  EXPECT_LT((Eigen::MatrixXd(X) - columnMajor).norm() / columnMajor.norm(), 1e-13);
+  RowMajorMatrixXd wrongSize = RowMajorMatrixXd::Ones(A.rows() - 1, 2);
+  EXPECT_THROW(chol.solvePermutedInPlace(wrongSize), NumericalFailure);
+}
+
 TEST(SparseCholesky, RefusesIndefiniteAndEmptyMatrices) {
   SparseCholesky chol;
   EXPECT_THROW(chol.factor(pathLaplacian(10, 0.0) * -1.0), NumericalFailure);
@@ -105,6 +125,8 @@ TEST(SparseCholesky, RefusesIndefiniteAndEmptyMatrices) {
   EXPECT_THROW(chol.permutation(), NumericalFailure);
   Eigen::MatrixXd X = Eigen::MatrixXd::Ones(3, 2);
   EXPECT_THROW(chol.solvePermutedInPlace(X), NumericalFailure);
+  RowMajorMatrixXd rowMajor = RowMajorMatrixXd::Ones(3, 2);
+  EXPECT_THROW(chol.solvePermutedInPlace(rowMajor), NumericalFailure);
 }
 
 }  // namespace

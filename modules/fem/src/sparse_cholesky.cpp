@@ -115,6 +115,76 @@ bool solvePermutedColumns(cholmod_factor* factor, Eigen::MatrixXd& X, Eigen::Ind
   return cholmod_super_lsolve(factor, &x, &e, &local.common) && cholmod_super_ltsolve(factor, &x, &e, &local.common);
 }
 
+// BLAS-3 kernels for the row-major supernodal solves, looked up at run time like the thread settings
+// above: CHOLMOD brings its BLAS into the process, and this module does not link one itself.
+using Dgemm = void (*)(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
+                       const int*, const double*, const int*, const double*, double*, const int*);
+using Dtrsm = void (*)(const char*, const char*, const char*, const char*, const int*, const int*, const double*,
+                       const double*, const int*, double*, const int*);
+
+struct Blas3 {
+  Dgemm gemm = reinterpret_cast<Dgemm>(dlsym(RTLD_DEFAULT, "dgemm_"));
+  Dtrsm trsm = reinterpret_cast<Dtrsm>(dlsym(RTLD_DEFAULT, "dtrsm_"));
+};
+
+const Blas3& blas3() {
+  static const Blas3 blas;
+  if (!blas.gemm || !blas.trsm) throw NumericalFailure("sparse Cholesky: no BLAS (dgemm_, dtrsm_) in the process");
+  return blas;
+}
+
+// One supernode of the factor: columns k1 .. k1 + cols − 1, its rows (the first `cols` are the diagonal
+// block's), and its dense column-major values (rows by cols): L1 on top, L2 below.
+struct Supernode {
+  int k1, cols, rows;
+  const int* rowIndex;
+  const double* values;
+};
+
+Supernode supernode(const cholmod_factor* L, std::size_t s) {
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  return {super[s], super[s + 1] - super[s], pi[s + 1] - pi[s], static_cast<const int*>(L->s) + pi[s],
+          static_cast<const double*>(L->x) + px[s]};
+}
+
+// L Lᵀ X = B on `count` columns of the row-major X (row stride ld), rows in the factor's order. Per
+// supernode, the rows of X it owns are contiguous: X1 holds them as a column-major count by cols block,
+// so L1 X1 = B1 is X1ᵀ L1ᵀ = B1ᵀ, and the update L2 X1 of the rows below goes through E (count by the
+// rows below, column-major) row by row.
+void solveRowMajorColumns(const Blas3& blas, const cholmod_factor* L, double* X, int ld, int count,
+                          std::vector<double>& E) {
+  E.resize(std::max<std::size_t>(1, std::size_t(count) * L->maxesize));
+  const double one = 1.0, minusOne = -1.0, zero = 0.0;
+  for (std::size_t s = 0; s < L->nsuper; ++s) {
+    const Supernode n = supernode(L, s);
+    const int below = n.rows - n.cols;
+    double* X1 = X + std::size_t(n.k1) * std::size_t(ld);
+    blas.trsm("R", "L", "T", "N", &count, &n.cols, &one, n.values, &n.rows, X1, &ld);
+    if (below == 0) continue;
+    blas.gemm("N", "T", &count, &below, &n.cols, &one, X1, &ld, n.values + n.cols, &n.rows, &zero, E.data(), &count);
+    for (int i = 0; i < below; ++i) {
+      double* row = X + std::size_t(n.rowIndex[n.cols + i]) * std::size_t(ld);
+      const double* e = E.data() + std::size_t(i) * std::size_t(count);
+      for (int j = 0; j < count; ++j) row[j] -= e[j];
+    }
+  }
+  for (std::size_t s = L->nsuper; s-- > 0;) {
+    const Supernode n = supernode(L, s);
+    const int below = n.rows - n.cols;
+    double* X1 = X + std::size_t(n.k1) * std::size_t(ld);
+    if (below > 0) {
+      for (int i = 0; i < below; ++i)
+        std::copy_n(X + std::size_t(n.rowIndex[n.cols + i]) * std::size_t(ld), count,
+                    E.data() + std::size_t(i) * std::size_t(count));
+      blas.gemm("N", "N", &count, &n.cols, &below, &minusOne, E.data(), &count, n.values + n.cols, &n.rows, &one, X1,
+                &ld);
+    }
+    blas.trsm("R", "L", "N", "N", &count, &n.cols, &one, n.values, &n.rows, X1, &ld);
+  }
+}
+
 }  // namespace
 
 struct SparseCholesky::Impl {
@@ -170,7 +240,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
 }
 
 void SparseCholesky::solveInPlace(Eigen::MatrixXd& X) const {
-  solveBlocks(X, kSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
+  solveBlocks(X.rows(), X.cols(), kSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
     return solveColumns(impl_->llt.factor(), X, first, count, X);
   });
 }
@@ -181,19 +251,30 @@ Eigen::VectorXi SparseCholesky::permutation() const {
 }
 
 void SparseCholesky::solvePermutedInPlace(Eigen::MatrixXd& X) const {
-  solveBlocks(X, kPermutedSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
+  solveBlocks(X.rows(), X.cols(), kPermutedSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
     return solvePermutedColumns(impl_->llt.factor(), X, first, count);
+  });
+}
+
+void SparseCholesky::solvePermutedInPlace(RowMajorMatrixXd& X) const {
+  const Blas3& blas = blas3();
+  solveBlocks(X.rows(), X.cols(), kPermutedSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
+    const cholmod_factor* L = impl_->llt.factor();
+    if (!L->is_super || L->xtype != CHOLMOD_REAL) return false;
+    solveRowMajorColumns(blas, L, X.data() + first, int(X.cols()), int(count), threadCommon().workspace);
+    return true;
   });
 }
 
 // Blocks of `blockColumns` columns of X in parallel (seed 002 §3.4: the many right-hand sides of Z);
 // each column's solution is the same whatever the threads.
 template <class SolveBlock>
-void SparseCholesky::solveBlocks(const Eigen::MatrixXd& X, Eigen::Index blockColumns, SolveBlock solveBlock) const {
+void SparseCholesky::solveBlocks(Eigen::Index rows, Eigen::Index cols, Eigen::Index blockColumns,
+                                 SolveBlock solveBlock) const {
   if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: solve before factor");
-  if (X.rows() != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
+  if (rows != impl_->n) throw NumericalFailure("sparse Cholesky: right-hand side has the wrong size");
   std::atomic<bool> failed{false};
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.cols(), blockColumns),
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, cols, blockColumns),
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
                       if (!solveBlock(r.begin(), r.size())) failed = true;
                     });

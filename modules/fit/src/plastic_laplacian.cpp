@@ -27,18 +27,19 @@ using Eigen::Index;
 extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
                        const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 
-// AᵀA α, lower triangle only, for A: rows by columns (column-major, contiguous columns). Row blocks on
-// all cores, summed in a fixed order so that results are reproducible; each block is one BLAS call on the
-// calling thread (CHOLMOD's setting keeps OpenBLAS single-threaded).
-Eigen::MatrixXd lowerGram(const Eigen::Ref<const Eigen::MatrixXd>& A, double alpha) {
+// GᵀG α, lower triangle only, for a row-major G (rows by n): row blocks on all cores, summed in a fixed
+// order so that results are reproducible. Row-major G is the column-major n by rows block Gᵀ, so each
+// row block is one contiguous BLAS call (Gᵀ Gᵀᵀ, "N") on the calling thread (CHOLMOD's setting keeps
+// OpenBLAS single-threaded).
+Eigen::MatrixXd lowerGram(const RowMajorMatrixXd& G, double alpha) {
   constexpr Index kRowBlock = 8192;
-  const int n = int(A.cols()), lda = int(A.outerStride());
+  const int n = int(G.cols());
   return tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<Index>(0, A.rows(), kRowBlock), Eigen::MatrixXd(Eigen::MatrixXd::Zero(n, n)),
+      tbb::blocked_range<Index>(0, G.rows(), kRowBlock), Eigen::MatrixXd(Eigen::MatrixXd::Zero(n, n)),
       [&](const tbb::blocked_range<Index>& r, Eigen::MatrixXd sum) {
         const int k = int(r.size());
         const double beta = 1.0;
-        if (n > 0 && k > 0) dsyrk_("L", "T", &n, &k, &alpha, A.data() + r.begin(), &lda, &beta, sum.data(), &n);
+        if (n > 0 && k > 0) dsyrk_("L", "N", &n, &k, &alpha, G.data() + r.begin() * n, &n, &beta, sum.data(), &n);
         return sum;
       },
       [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
@@ -65,7 +66,8 @@ void transposeShifted(const Src& src, const Eigen::Ref<const Eigen::VectorXd>& s
 }
 
 // The column sums of X, over row blocks in parallel and summed in a fixed order.
-Eigen::RowVectorXd columnSums(const Eigen::MatrixXd& X) {
+template <class Matrix>
+Eigen::RowVectorXd columnSums(const Matrix& X) {
   constexpr Index kRowBlock = 4096;
   return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<Index>(0, X.rows(), kRowBlock), Eigen::RowVectorXd(Eigen::RowVectorXd::Zero(X.cols())),
@@ -185,7 +187,8 @@ SmoothnessBaseSolver::SmoothnessBaseSolver(const Eigen::SparseMatrix<double>& Ls
 // with its rows in the grounded factor's order (row i: tet groundedOrder_(i)), so that the solves need
 // no permuting copies. Lsc⁺ b for b ⊥ 1: solve the grounded system for x' (x'_0 = 0), then subtract the
 // mean of [0; x'].
-Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(Eigen::MatrixXd& X) const {
+template <class Matrix>
+Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(Matrix& X) const {
   if (tetCount_ == 1) return Eigen::RowVectorXd::Zero(X.cols());  // a single tet: Lsc = 0, blocks are empty
   groundedCholesky_.solvePermutedInPlace(X);
   const Eigen::RowVectorXd mean = columnSums(X) / double(tetCount_);
@@ -225,16 +228,19 @@ Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z, const E
   const Index m = tetCount_, C = Z.rows();
   if (Z.cols() != 6 * m) throw BadInput("", "smoothness solver: Z has the wrong number of columns");
   if (Zpsi.rows() != C || Zpsi.cols() != 6) throw BadInput("", "smoothness solver: Z ψ is not #C by 6");
-  // Column-major Z (#C by 6#T) read as 6#C by #T: entry (r + C c, t) = Z(r, 6t + c).
-  const Eigen::Map<const Eigen::MatrixXd> Zr(Z.data(), 6 * C, m);
   // Z (L²)⁺ Zᵀ = Σ_c G_cᵀ G_c / ξ_c² for G_c = Lsc⁺ (Z_cᵀ − mean), one component at a time in one buffer
   // (#T by #C, a sixth of Z): first touches of fresh memory cost 20 µs a page on a virtual machine, more
-  // than the transpose that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z). The means
-  // of Z_c's rows are Z ψ_c / √#T. G_c's rows stay in the factor's order: the Gram matrix does not
-  // depend on it.
-  Eigen::MatrixXd G(m - 1, C), result = Eigen::MatrixXd::Zero(C, C);
+  // than the copy that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z). The means of Z_c's
+  // rows are Z ψ_c / √#T. G_c is row-major with its rows in the factor's order: row i is Z's column
+  // 6 t + c (contiguous) for the tet t of that row, and the supernodal solves and the Gram matrix read
+  // whole rows; the Gram matrix does not depend on the rows' order.
+  RowMajorMatrixXd G(m - 1, C);
+  Eigen::MatrixXd result = Eigen::MatrixXd::Zero(C, C);
   for (Index c = 0; c < 6; ++c) {
-    transposeShifted(Zr.middleRows(c * C, C), Zpsi.col(c) / std::sqrt(double(m)), groundedOrder_, G);
+    const Eigen::VectorXd shift = Zpsi.col(c) / std::sqrt(double(m));
+    tbb::parallel_for(tbb::blocked_range<Index>(0, m - 1, 1024), [&](const tbb::blocked_range<Index>& r) {
+      for (Index i = r.begin(); i < r.end(); ++i) G.row(i) = (Z.col(6 * groundedOrder_(i) + c) - shift).transpose();
+    });
     const Eigen::RowVectorXd mean = applyScalarPseudoInverse(G);
     const double weight = 1.0 / weightSquared(c);
     result += lowerGram(G, weight);

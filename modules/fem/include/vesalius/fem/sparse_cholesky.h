@@ -23,6 +23,9 @@ enum class FillReducingOrdering {
   nestedDissection,
 };
 
+// Row-major blocks: each row's right-hand-side entries contiguous.
+using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 class SparseCholesky {
  public:
   explicit SparseCholesky(FillReducingOrdering ordering = FillReducingOrdering::automatic);
@@ -47,16 +50,20 @@ class SparseCholesky {
   // permuting copies and its copy of the result (450 columns of the 38,921-tet adjacency Laplacian's
   // factor on one thread: 0.29 s instead of 0.49 s). For callers that can build X in that order.
   void solvePermutedInPlace(Eigen::MatrixXd& X) const;
+  // The same on a row-major X: the supernodal solves with BLAS-3 on each supernode's rows, which are
+  // contiguous here, and whole-row gathers and scatters where CHOLMOD's loops step across columns (450
+  // columns of the 38,921-tet Laplacian's factor: see docs/benchmarks.md, session 20).
+  void solvePermutedInPlace(RowMajorMatrixXd& X) const;
 
   Eigen::Index size() const;
   // Entries of the factor's lower triangle (its fill) from the last analysis; 0 before any.
   double factorEntries() const;
 
  private:
-  // Checks X against the factor, then solveBlock(first, count) on blocks of its columns in parallel;
-  // throws NumericalFailure if any block fails.
+  // Checks a rows by cols block against the factor, then solveBlock(first, count) on blocks of its columns
+  // in parallel; throws NumericalFailure if any block fails.
   template <class SolveBlock>
-  void solveBlocks(const Eigen::MatrixXd& X, Eigen::Index blockColumns, SolveBlock solveBlock) const;
+  void solveBlocks(Eigen::Index rows, Eigen::Index cols, Eigen::Index blockColumns, SolveBlock solveBlock) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
