@@ -3,7 +3,6 @@
 #include "vesalius/core/error.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
@@ -50,24 +49,8 @@ Eigen::MatrixXd lowerGram(const RowMajorMatrixXd& G, double alpha) {
 
 double weightSquared(Index c) { return kPlasticStrainWeights[std::size_t(c)] * kPlasticStrainWeights[std::size_t(c)]; }
 
-// dst = (src − shift · 1ᵀ)ᵀ with dst's rows in the given order of src's columns, dst(i, r) =
-// src(r, columns(i)) − shift(r), tile by tile in parallel: the reshapes between the tet-major and the
-// component-major layouts are large transposes (#T by 6K) that would otherwise thrash the cache.
-template <class Src>
-void transposeShifted(const Src& src, const Eigen::Ref<const Eigen::VectorXd>& shift, const Eigen::VectorXi& columns,
-                      Eigen::Ref<Eigen::MatrixXd> dst) {
-  tbb::parallel_for(tbb::blocked_range2d<Index>(0, src.rows(), 64, 0, columns.size(), 64),
-                    [&](const tbb::blocked_range2d<Index>& r) {
-                      const Index r0 = r.rows().begin(), nr = r.rows().size();
-                      const Index c0 = r.cols().begin(), nc = r.cols().size();
-                      dst.block(c0, r0, nc, nr) =
-                          (src(Eigen::seqN(r0, nr), columns.segment(c0, nc)).colwise() - shift.segment(r0, nr)).transpose();
-                    });
-}
-
 // The column sums of X, over row blocks in parallel and summed in a fixed order.
-template <class Matrix>
-Eigen::RowVectorXd columnSums(const Matrix& X) {
+Eigen::RowVectorXd columnSums(const RowMajorMatrixXd& X) {
   constexpr Index kRowBlock = 4096;
   return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<Index>(0, X.rows(), kRowBlock), Eigen::RowVectorXd(Eigen::RowVectorXd::Zero(X.cols())),
@@ -187,8 +170,7 @@ SmoothnessBaseSolver::SmoothnessBaseSolver(const Eigen::SparseMatrix<double>& Ls
 // with its rows in the grounded factor's order (row i: tet groundedOrder_(i)), so that the solves need
 // no permuting copies. Lsc⁺ b for b ⊥ 1: solve the grounded system for x' (x'_0 = 0), then subtract the
 // mean of [0; x'].
-template <class Matrix>
-Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(Matrix& X) const {
+Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(RowMajorMatrixXd& X) const {
   if (tetCount_ == 1) return Eigen::RowVectorXd::Zero(X.cols());  // a single tet: Lsc = 0, blocks are empty
   groundedCholesky_.solvePermutedInPlace(X);
   const Eigen::RowVectorXd mean = columnSums(X) / double(tetCount_);
@@ -201,25 +183,32 @@ Eigen::RowVectorXd SmoothnessBaseSolver::applyScalarPseudoInverse(Matrix& X) con
 Eigen::MatrixXd SmoothnessBaseSolver::solve(const Eigen::MatrixXd& h, double smoothnessScale) const {
   const Index m = tetCount_, K = h.cols();
   if (h.rows() != 6 * m) throw BadInput("", "smoothness solver: right-hand side has the wrong number of rows");
-  // Component-major block X (#T − 1 by 6K): column 6k + c is component c of column k, mean removed
-  // (projection onto the range of L, Singular Lemma (iii)).
-  Eigen::MatrixXd mean(6, K), X(m - 1, 6 * K);
-  tbb::parallel_for(Index(0), K, [&](Index k) {
-    const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> hk(h.col(k).data(), 6, m);
-    mean.col(k) = hk.rowwise().mean();
-    transposeShifted(hk, mean.col(k), groundedOrder_, X.middleCols(6 * k, 6));
+  // Component-major block X (#T − 1 by 6K, row-major): entry (i, 6k + c) is component c of column k at
+  // the tet of row i, mean removed (projection onto the range of L, Singular Lemma (iii)); each row is
+  // six contiguous entries of h per column.
+  Eigen::MatrixXd mean(6, K);
+  for (Index k = 0; k < K; ++k)
+    mean.col(k) = Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(h.col(k).data(), 6, m).rowwise().mean();
+  RowMajorMatrixXd X(m - 1, 6 * K);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, m - 1, 4096), [&](const tbb::blocked_range<Index>& r) {
+    for (Index i = r.begin(); i < r.end(); ++i)
+      for (Index k = 0; k < K; ++k)
+        X.row(i).segment<6>(6 * k) = (h.col(k).segment<6>(6 * groundedOrder_(i)) - mean.col(k)).transpose();
   });
   applyScalarPseudoInverse(X);
   applyScalarPseudoInverse(X);
-  // Back to tet-major: (1/(a ξ_c²)) (Lsc⁺)² h_c − (ψ_cᵀh) ψ_c, where (ψ_cᵀh) ψ_c is the mean of h_c.
+  // Back to tet-major: (1/(a ξ_c²)) (Lsc⁺)² h_c − (ψ_cᵀh) ψ_c, where (ψ_cᵀh) ψ_c is the mean of h_c; tet
+  // 0's row is minus the sum of the others (the columns have zero mean).
+  Eigen::Array<double, 6, 1> scale;
+  for (Index c = 0; c < 6; ++c) scale(c) = 1.0 / (smoothnessScale * weightSquared(c));
   Eigen::MatrixXd y(6 * m, K);
-  tbb::parallel_for(Index(0), K, [&](Index k) {
-    Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> yk(y.col(k).data(), 6, m);
-    const auto Xk = X.middleCols(6 * k, 6);
-    yk.col(0) = -Xk.colwise().sum().transpose();
-    yk(Eigen::all, groundedOrder_) = Xk.transpose();
-    for (Index c = 0; c < 6; ++c)
-      yk.row(c).array() = yk.row(c).array() / (smoothnessScale * weightSquared(c)) - mean(c, k);
+  const auto put = [&](Index t, const auto& row) {
+    for (Index k = 0; k < K; ++k)
+      y.col(k).segment<6>(6 * t) = row.template segment<6>(6 * k).transpose().array() * scale - mean.col(k).array();
+  };
+  put(0, Eigen::RowVectorXd(-columnSums(X)));
+  tbb::parallel_for(tbb::blocked_range<Index>(0, m - 1, 4096), [&](const tbb::blocked_range<Index>& r) {
+    for (Index i = r.begin(); i < r.end(); ++i) put(groundedOrder_(i), X.row(i));
   });
   return y;
 }
@@ -239,7 +228,8 @@ Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z, const E
   for (Index c = 0; c < 6; ++c) {
     const Eigen::VectorXd shift = Zpsi.col(c) / std::sqrt(double(m));
     tbb::parallel_for(tbb::blocked_range<Index>(0, m - 1, 1024), [&](const tbb::blocked_range<Index>& r) {
-      for (Index i = r.begin(); i < r.end(); ++i) G.row(i) = (Z.col(6 * groundedOrder_(i) + c) - shift).transpose();
+      for (Index i = r.begin(); i < r.end(); ++i)
+        G.row(i) = (Z.col(6 * groundedOrder_(i) + c) - shift).transpose();
     });
     const Eigen::RowVectorXd mean = applyScalarPseudoInverse(G);
     const double weight = 1.0 / weightSquared(c);

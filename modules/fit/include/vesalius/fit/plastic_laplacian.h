@@ -59,11 +59,10 @@ class SmoothnessBaseSolver {
   Eigen::MatrixXd sandwich(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Zpsi) const;
 
  private:
-  // Lsc⁺ on the component-major block X (#T − 1 by n, rows in the grounded factor's order; MatrixXd or
-  // RowMajorMatrixXd), whose columns have zero mean; in place. Returns the mean removed after the solve
-  // (minus row 0 of Lsc⁺ X).
-  template <class Matrix>
-  Eigen::RowVectorXd applyScalarPseudoInverse(Matrix& X) const;
+  // Lsc⁺ on the component-major block X (#T − 1 by n, row-major, rows in the grounded factor's order),
+  // whose columns have zero mean; in place. Returns the mean removed after the solve (minus row 0 of
+  // Lsc⁺ X).
+  Eigen::RowVectorXd applyScalarPseudoInverse(RowMajorMatrixXd& X) const;
 
   Eigen::Index tetCount_;
   Eigen::SparseMatrix<double> Lsc_;
