@@ -47,8 +47,8 @@ void keepCholmodOnThisThread() {
 constexpr Eigen::Index kSolveColumns = 64;
 // Columns per in-place solve in the factor's order (no copies): each block streams the whole factor
 // twice, and larger blocks stream it fewer times. Six solves on 450 columns of the 38,921-tet
-// Laplacian's factor on both cores, blocks of 225 instead of 56: 1.16 s of wall and 1.97-2.00 s of CPU
-// instead of 1.26-1.29 s and 2.34-2.38 s (the best two of five alternating runs each, load 2.4-2.9).
+// Laplacian's factor on both cores (session 19, CHOLMOD's column-major solves), blocks of 225 instead of
+// 56: 1.16 s of wall and 1.97-2.00 s of CPU instead of 1.26-1.29 s and 2.34-2.38 s.
 constexpr Eigen::Index kPermutedSolveColumns = 256;
 
 // Eigen keeps the factor protected; the parallel solve hands it to cholmod_solve2 directly.
@@ -56,7 +56,7 @@ struct SupernodalLlt : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, 
   cholmod_factor* factor() const { return m_cholmodFactor; }
 };
 
-// A CHOLMOD workspace per thread. cholmod_solve2 and the supernodal solves only read the factor; their
+// A CHOLMOD workspace per thread. cholmod_solve2 and the row-major solves only read the factor; their
 // status, allocations and workspace go through the Common they are given, so solves on different
 // Commons may run at once.
 struct ThreadCommon {
@@ -69,7 +69,7 @@ struct ThreadCommon {
   ThreadCommon(const ThreadCommon&) = delete;
   ThreadCommon& operator=(const ThreadCommon&) = delete;
   cholmod_common common;
-  std::vector<double> workspace;  // the supernodal solves' E
+  std::vector<double> workspace;  // E of the row-major supernodal solves
 };
 
 ThreadCommon& threadCommon() {
@@ -103,16 +103,6 @@ bool solveColumns(cholmod_factor* factor, const Eigen::MatrixXd& B, Eigen::Index
   for (cholmod_dense* d : {x, y, e})
     if (d) cholmod_free_dense(&d, &common);
   return solved;
-}
-
-// L Lᵀ X = B in place on one block of columns of X (rows in the factor's order), with this thread's
-// Common and workspace; false if CHOLMOD fails.
-bool solvePermutedColumns(cholmod_factor* factor, Eigen::MatrixXd& X, Eigen::Index first, Eigen::Index count) {
-  ThreadCommon& local = threadCommon();
-  local.workspace.resize(std::max<std::size_t>(1, std::size_t(count) * factor->maxesize));
-  cholmod_dense x = denseColumns(X.data(), X.rows(), first, count);
-  cholmod_dense e = denseColumns(local.workspace.data(), Eigen::Index(local.workspace.size()), 0, 1);
-  return cholmod_super_lsolve(factor, &x, &e, &local.common) && cholmod_super_ltsolve(factor, &x, &e, &local.common);
 }
 
 // BLAS-3 kernels for the row-major supernodal solves, looked up at run time like the thread settings
@@ -248,12 +238,6 @@ void SparseCholesky::solveInPlace(Eigen::MatrixXd& X) const {
 Eigen::VectorXi SparseCholesky::permutation() const {
   if (impl_->n == 0) throw NumericalFailure("sparse Cholesky: permutation before factor");
   return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(impl_->llt.factor()->Perm), impl_->n);
-}
-
-void SparseCholesky::solvePermutedInPlace(Eigen::MatrixXd& X) const {
-  solveBlocks(X.rows(), X.cols(), kPermutedSolveColumns, [&](Eigen::Index first, Eigen::Index count) {
-    return solvePermutedColumns(impl_->llt.factor(), X, first, count);
-  });
 }
 
 void SparseCholesky::solvePermutedInPlace(RowMajorMatrixXd& X) const {

@@ -45,14 +45,12 @@ class SparseCholesky {
 
   // The fill-reducing order of the last factor: row i of the factored P A Pᵀ is row permutation()(i) of A.
   Eigen::VectorXi permutation() const;
-  // X: #N by #K with its rows in the factor's order (row i holds row permutation()(i)), replaced by
-  // (P A Pᵀ)⁻¹ X: the supernodal triangular solves on X's own columns, without solveInPlace's two
-  // permuting copies and its copy of the result (450 columns of the 38,921-tet adjacency Laplacian's
-  // factor on one thread: 0.29 s instead of 0.49 s). For callers that can build X in that order.
-  void solvePermutedInPlace(Eigen::MatrixXd& X) const;
-  // The same on a row-major X: the supernodal solves with BLAS-3 on each supernode's rows, which are
-  // contiguous here, and whole-row gathers and scatters where CHOLMOD's loops step across columns (450
-  // columns of the 38,921-tet Laplacian's factor: see docs/benchmarks.md, session 20).
+  // X: #N by #K, row-major, with its rows in the factor's order (row i holds row permutation()(i)),
+  // replaced by (P A Pᵀ)⁻¹ X in place: the supernodal solves with BLAS-3 on each supernode's rows, which
+  // are contiguous in a row-major block, and whole-row gathers and scatters. For callers that can build X
+  // in that order. 450 columns of the 38,921-tet adjacency Laplacian's factor on one thread: 0.19-0.20 s
+  // of CPU; CHOLMOD's supernodal solves on a column-major block, whose loops step across the columns,
+  // 0.25-0.26 s (cholmod_solve2 with its permuting copies: 0.49 s).
   void solvePermutedInPlace(RowMajorMatrixXd& X) const;
 
   Eigen::Index size() const;
