@@ -17,6 +17,7 @@
 #include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/body_frame.h"
 #include "vesalius/transfer/bones_inside_skin.h"
+#include "vesalius/transfer/bones_warped_into_skin.h"
 #include "vesalius/transfer/skeleton_placement.h"
 
 #include <Eigen/Geometry>
@@ -233,7 +234,8 @@ MatrixX3d jointsOfBones(const MatrixX3d& V, const MatrixX3d& joints) {
 // Rule R6 for the reference itself: each unit of bones (unitsIntoSkin) moved inside the skin by the
 // smallest similarity change (bones_inside_skin.h; the trunk's groups kept symmetric about the sagittal
 // plane) that keeps the joints near it (`joints`, the placed joint centres) in place, the points fixed to
-// its bones with it. Reports each unit's change and the bone vertices outside the skin before and after.
+// its bones with it, and what is still outside then bent inside (bones_warped_into_skin.h). Reports each
+// unit's change and the bone vertices outside the skin before, after the change and after the bend.
 void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const MatrixX3d& joints, io::Report& report) {
   const transfer::SkinDistanceFunction skin = skinDistances(anatomy.skin);
   std::map<std::string, std::string> unitOfTissue;
@@ -244,17 +246,21 @@ void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const MatrixX3d& joints, io:
     const transfer::InsideSkinCorrection c =
         transfer::correctionIntoSkin(V, near, skin,
                                      anatomy.tissues[members[0]].symmetric ? &anatomy.sagittal : nullptr);
-    for (const std::size_t t : members) anatomy.tissues[t].mesh.V = c.change.apply(anatomy.tissues[t].mesh.V);
+    const transfer::InsideSkinWarp warp = transfer::warpIntoSkin(c.change.apply(V), skin);
+    for (const std::size_t t : members) anatomy.tissues[t].mesh.V = warp.apply(c.change.apply(anatomy.tissues[t].mesh.V));
     for (ReferencePoint& p : anatomy.points)
-      if (unitOfTissue.count(p.tissue) && unitOfTissue.at(p.tissue) == unit) p.position = c.change.apply(p.position);
+      if (unitOfTissue.count(p.tissue) && unitOfTissue.at(p.tissue) == unit)
+        p.position = warp.apply(c.change.apply(p.position).transpose()).transpose();
     const Eigen::Vector3d centroid = V.colwise().mean().transpose();
-    changes[unit] = {{"outside_before", c.outsideBefore}, {"outside_after", c.outsideAfter}, {"scale", c.change.scale},
+    changes[unit] = {{"outside_before", c.outsideBefore}, {"outside_after_change", c.outsideAfter},
+                     {"outside_after", warp.outsideAfter}, {"warp_largest_mm", warp.largestMoveMm},
+                     {"scale", c.change.scale},
                      {"turn_degrees", Eigen::AngleAxisd(c.change.rotation).angle() * 180.0 / M_PI},
                      {"centroid_shift_mm", (c.change.apply(centroid) - centroid).norm()},
                      {"joints", near.rows()},
                      {"joint_shift_mm", near.rows() ? (c.change.apply(near) - near).rowwise().norm().maxCoeff() : 0.0}};
     before += c.outsideBefore;
-    after += c.outsideAfter;
+    after += warp.outsideAfter;
   }
   report.metric("bones_into_skin", changes);
   report.metric("bone_vertices_outside_skin_before", before);

@@ -87,11 +87,10 @@ std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const 
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
 // field's first-order error at the skin; `deepMm` counts those deeper apart. Both bodies include their
 // cavities (body_distance.h), whose volumes the report gives, and the vertices that lie in them.
-void reportInside(const BodyDistance& body, const ReferenceAnatomy& reference,
+void reportInside(const BodyDistance& referenceBody, const BodyDistance& body, const ReferenceAnatomy& reference,
                   const transfer::TransferredAnatomy& result, double deepMm, io::Report& report) {
   std::vector<MatrixX3d> rest;
   for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
-  const BodyDistance referenceBody = bodySignedDistance(reference.skin);
   const std::vector<Eigen::VectorXd> before = signedDistances(referenceBody.signedDistance, rest),
                                      after = signedDistances(body.signedDistance, result.tissues);
   report.metric("reference_skin_cavities_ml", referenceBody.cavitiesMl);
@@ -141,7 +140,8 @@ void reportBones(const ReferenceAnatomy& reference, const transfer::TransferredA
   nlohmann::json bones = nlohmann::json::array();
   for (const transfer::BoneGroupMap& group : result.boneGroups) {
     nlohmann::json g{{"group", group.group}, {"symmetric", group.symmetric}, {"rms_to_attractor_mm", group.rmsToAttractorMm},
-                     {"determinant", group.map.A.determinant()}};
+                     {"determinant", group.map.A.determinant()}, {"bent_vertices", group.bend.outsideBefore},
+                     {"bend_largest_mm", group.bend.largestMoveMm}, {"outside_after_bend", group.bend.outsideAfter}};
     if (group.symmetric) {
       // A pair (hips, ribs) is symmetric as a whole: the group's meshes are measured together.
       TriMesh rest, interpolated, registered;
@@ -272,11 +272,14 @@ void runTransfer(const TransferOptions& o) {
   const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, grid);
   endStage("inside mask");
   // Rule R6 in the bone registration: bones are kept inside the eroded skin (without fat, the report's
-  // target skin).
+  // target skin), and as deep as they were in the reference's.
   const BodyDistance erodedBody = bodySignedDistance(eroded);
   endStage("eroded skin distance");
+  const BodyDistance referenceBody = bodySignedDistance(reference.skin);
+  endStage("reference skin distance");
   transfer::AnatomyTransferOptions transferOptions;
   transferOptions.targetSkinDistance = &erodedBody.signedDistance;
+  transferOptions.referenceSkinDistance = &referenceBody.signedDistance;
   transferOptions.field.laplace.solver =
       o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
   const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside, transferOptions);
@@ -298,7 +301,8 @@ void runTransfer(const TransferOptions& o) {
   report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
-  reportInside(fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, result, o.voxelSize, report);
+  reportInside(referenceBody, fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, result, o.voxelSize,
+               report);
   reportBones(reference, result, report);
   endStage("checks");
 

@@ -7,6 +7,8 @@
 #include "vesalius/core/triangle_tree.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace vesalius::transfer {
@@ -69,6 +71,25 @@ Eigen::VectorXd sampleSignedDistance(const Grid<float>& distance, const MatrixX3
     d[r] = insideVoxels(index, distance.geometry.size) ? sampleTrilinear(distance, index) : offGrid;
   }
   return d;
+}
+
+SkinDistances sampleSkinDistances(const Grid<float>& distance, const MatrixX3d& V) {
+  const double offGrid = std::numeric_limits<double>::quiet_NaN();
+  SkinDistances out{sampleSignedDistance(distance, V, offGrid), MatrixX3d::Zero(V.rows(), 3)};
+  const double h = 0.5 * distance.geometry.spacing.minCoeff();
+  MatrixX3d gradient(V.rows(), 3);
+  for (int k = 0; k < 3; ++k) {
+    const MatrixX3d step = (h * Eigen::Vector3d::Unit(k)).transpose().replicate(V.rows(), 1);
+    gradient.col(k) = (sampleSignedDistance(distance, V + step, offGrid) - sampleSignedDistance(distance, V - step, offGrid)) / (2 * h);
+  }
+  for (Eigen::Index r = 0; r < V.rows(); ++r) {
+    if (!std::isfinite(out.distance[r]) || !gradient.row(r).allFinite()) {
+      out.distance[r] = 0.0;
+      continue;
+    }
+    if (gradient.row(r).norm() > 1e-9) out.outward.row(r) = gradient.row(r).normalized();
+  }
+  return out;
 }
 
 }  // namespace vesalius::transfer

@@ -109,6 +109,22 @@ AffineMap fitGroupMapInside(const BoneGroupMap& group, const MatrixX3d& P, const
   return map;
 }
 
+// The bend that brings a mapped group's vertices (`mapped`, target space; `rest`, the same rows in the
+// reference) still outside the eroded skin inside (bones_warped_into_skin.h), the distances read off the
+// grids: each vertex as deep as it was in the reference skin, at most the margin; one outside the
+// reference's own skin (a label past the body where a scan's field of view cut it) left as it is.
+InsideSkinWarp bendInside(const MatrixX3d& mapped, const MatrixX3d& rest, const AnatomyTransferOptions& options) {
+  const InsideSkinWarpOptions bend;
+  Eigen::VectorXd wanted = Eigen::VectorXd::Constant(rest.rows(), -bend.marginMm);
+  if (options.referenceSkinDistance) {
+    const Eigen::VectorXd before =
+        sampleSignedDistance(*options.referenceSkinDistance, rest, std::numeric_limits<double>::infinity());
+    wanted = (before.array() > 0).select(std::numeric_limits<double>::infinity(), before.cwiseMax(wanted));
+  }
+  const Grid<float>& eroded = *options.targetSkinDistance;
+  return warpIntoSkin(mapped, [&eroded](const MatrixX3d& P) { return sampleSkinDistances(eroded, P); }, wanted, bend);
+}
+
 // Step 2: the affine maps of the bone groups, attracted to their interpolated positions.
 // Each bone is attracted by its vertices deep inside the body, where the interpolated field is defined;
 // a bone with fewer than 4 of them (one outside the skin) by all of its vertices.
@@ -133,6 +149,10 @@ void registerBones(const ReferenceAnatomy& reference, const Grid<std::uint8_t>& 
     const MatrixX3d P = groupVertices(group, attractedRest), Q = groupVertices(group, attractors);
     group.map = fitGroupMapInside(group, P, Q, reference.sagittal, targetPlane, options);
     group.rmsToAttractorMm = std::sqrt((group.map.apply(P) - Q).rowwise().squaredNorm().mean());
+    if (options.targetSkinDistance) {
+      const MatrixX3d rest = groupVertices(group, restBones);
+      group.bend = bendInside(group.map.apply(rest), rest, options);
+    }
   }
 }
 
@@ -178,11 +198,11 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   start = std::chrono::steady_clock::now();
   for (const BoneGroupMap& group : result.boneGroups)
     for (const int t : group.tissues)
-      appendDeepRows(referenceInside, rest[t], group.map.apply(rest[t]) - rest[t], fixedPoints, fixedValues);
+      appendDeepRows(referenceInside, rest[t], group.place(rest[t]) - rest[t], fixedPoints, fixedValues);
   result.finalField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues),
                                                options.field, &result.skinField);
   for (int t = 0; t < int(reference.tissues.size()); ++t)
-    result.tissues.push_back(mapOfTissue[t] >= 0 ? result.boneGroups[mapOfTissue[t]].map.apply(rest[t])
+    result.tissues.push_back(mapOfTissue[t] >= 0 ? result.boneGroups[mapOfTissue[t]].place(rest[t])
                                                  : result.finalField.displace(rest[t]));
   std::map<std::string, int> tissueIndex;
   for (int t = 0; t < int(reference.tissues.size()); ++t) tissueIndex[reference.tissues[t].name] = t;
@@ -191,7 +211,7 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
     const ReferencePoint& point = reference.points[p];
     const auto it = tissueIndex.find(point.tissue);
     const int group = it == tissueIndex.end() ? -1 : mapOfTissue[it->second];
-    result.points.row(Eigen::Index(p)) = (group >= 0 ? result.boneGroups[group].map.apply(point.position)
+    result.points.row(Eigen::Index(p)) = (group >= 0 ? Eigen::Vector3d(result.boneGroups[group].place(point.position.transpose()).transpose())
                                                      : point.position + result.finalField.displacementAt(point.position))
                                              .transpose();
   }

@@ -4,6 +4,7 @@
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/grid.h"
 #include "vesalius/core/mesh.h"
+#include "vesalius/transfer/bones_inside_skin.h"
 
 #include <Eigen/Core>
 
@@ -32,5 +33,10 @@ double mirrorAsymmetry(const MatrixX3d& V, const MatrixX3i& F, const Plane& plan
 // R5, R6: a signed distance grid (mm, negative inside, as meshing::meshSignedDistance makes) sampled
 // trilinearly at each row of V (#V by 3); `offGrid` where a row lies off the grid.
 Eigen::VectorXd sampleSignedDistance(const Grid<float>& distance, const MatrixX3d& V, double offGrid);
+
+// The same with each row's outward direction: the sampled field's gradient by central differences of half
+// the finest spacing, normalized. A row off the grid reads 0 with no direction (neither in nor out), as
+// does the gradient where the field is clamped (beyond its band of exact distances).
+SkinDistances sampleSkinDistances(const Grid<float>& distance, const MatrixX3d& V);
 
 }  // namespace vesalius::transfer

@@ -14,11 +14,15 @@
 //      bones (bone_registration.h).
 //      Given the target's eroded skin as a signed distance, the fit is reweighted so that the bones stay
 //      inside it (rule R6): the springs of vertices the map puts outside, or within a margin, grow stiffer.
+//      What no affine map of the group brings inside is then bent inside (bones_warped_into_skin.h): the
+//      seed leaves collisions to "standard collision handling routines" (§8); a bend local to the
+//      vertices still outside, which leaves the rest of the bone on its map. A vertex goes as deep as it
+//      was in the reference, at most the margin; one outside the reference's own skin stays.
 //   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
 //      every other tissue and every point not on a bone moves by it. Bone vertices less than a cell deep
 //      inside the reference skin do not fix the field: there the skin's value wins, as two fixed shells
 //      a cell apart with different values fold the field between them. Bones and the points fixed to them
-//      move by their affine maps exactly (rules R1, R7).
+//      move by their affine maps, and bends, exactly (rules R1, R7).
 // The grid is the caller's (it covers the reference skin and every tissue), with the reference body's
 // inside mask on it; the field runs in reference space, as the seed's.
 #pragma once
@@ -26,6 +30,7 @@
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/grid.h"
 #include "vesalius/transfer/bone_registration.h"
+#include "vesalius/transfer/bones_warped_into_skin.h"
 #include "vesalius/transfer/displacement_field.h"
 
 #include <cstdint>
@@ -39,6 +44,10 @@ struct AnatomyTransferOptions {
   // Rule R6 in step 2: the signed distance (mm, negative inside) to the target's eroded skin on a grid in
   // target space (the caller's, not copied). Without it the maps are the plain least-squares fits.
   const Grid<float>* targetSkinDistance = nullptr;
+  // The signed distance to the reference's own skin (reference space): a bone vertex the reference has
+  // outside it is the reference's, not the transfer's, and is not bent; the others are bent at most as deep
+  // as they were in the reference. Without it every vertex outside is bent in.
+  const Grid<float>* referenceSkinDistance = nullptr;
   double insideMarginMm = 2.0;     // how deep inside a bone vertex is wanted, if its attractor is as deep
   double insideWeightGrowth = 2.0; // a shallower vertex's spring is stiffened by this factor per pass
   double insideMaxWeight = 1024;   // up to this stiffness (the others' is 1)
@@ -51,7 +60,9 @@ struct BoneGroupMap {
   bool symmetric = false;
   bool longBones = false;     // not symmetric, and every tissue a long bone (isLongBone): fitLongBoneMap
   AffineMap map;
+  InsideSkinWarp bend;          // after the map: what it leaves outside the eroded skin, bent inside (step 2)
   double rmsToAttractorMm = 0;  // RMS distance of the mapped bone to its interpolated position
+  MatrixX3d place(const MatrixX3d& rest) const { return bend.apply(map.apply(rest)); }  // #P by 3 → #P by 3
 };
 
 struct TransferredAnatomy {

@@ -1,0 +1,94 @@
+// Bones bent inside their skin by a smooth, local displacement (bones_warped_into_skin.h).
+#include "vesalius/transfer/bones_warped_into_skin.h"
+
+#include "vesalius/core/error.h"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace vesalius::transfer {
+
+namespace {
+
+// Wendland's C² kernel with support R.
+double wendland(double r, double R) {
+  const double q = r / R;
+  return q >= 1.0 ? 0.0 : std::pow(1.0 - q, 4) * (4.0 * q + 1.0);
+}
+
+// Σ_i φ(|p − x_i|) c_i for every row p of P.
+MatrixX3d kernelSum(const MatrixX3d& P, const MatrixX3d& X, const MatrixX3d& c, double R) {
+  MatrixX3d u = MatrixX3d::Zero(P.rows(), 3);
+  for (Eigen::Index p = 0; p < P.rows(); ++p)
+    for (Eigen::Index i = 0; i < X.rows(); ++i) {
+      const double w = wendland((P.row(p) - X.row(i)).norm(), R);
+      if (w > 0) u.row(p) += w * c.row(i);
+    }
+  return u;
+}
+
+// The rows outside the skin that are not left alone (wanted finite).
+std::vector<Eigen::Index> outsideRows(const SkinDistances& d, const Eigen::VectorXd& wanted) {
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < d.distance.size(); ++i)
+    if (d.distance[i] > 0 && std::isfinite(wanted[i])) rows.push_back(i);
+  return rows;
+}
+
+// One round's centres (the rows of X outside the skin) and coefficients (Φ + I) c = δ.
+void addRound(const MatrixX3d& X, const SkinDistances& d, const Eigen::VectorXd& wanted, InsideSkinWarp& warp) {
+  const std::vector<Eigen::Index> outside = outsideRows(d, wanted);
+  const auto n = Eigen::Index(outside.size());
+  MatrixX3d centres(n, 3), wishes(n, 3);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    const Eigen::Index i = outside[std::size_t(a)];
+    centres.row(a) = X.row(i);
+    wishes.row(a) = -(d.distance[i] - wanted[i]) * d.outward.row(i);
+  }
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Identity(n, n);
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (Eigen::Index b = 0; b < n; ++b) gram(a, b) += wendland((centres.row(a) - centres.row(b)).norm(), warp.radiusMm);
+  warp.centres.push_back(centres);
+  warp.coefficients.push_back(gram.ldlt().solve(Eigen::MatrixXd(wishes)));
+}
+
+}  // namespace
+
+MatrixX3d InsideSkinWarp::apply(const MatrixX3d& P) const {
+  MatrixX3d X = P;
+  for (std::size_t r = 0; r < centres.size(); ++r) X += kernelSum(X, centres[r], coefficients[r], radiusMm);
+  return X;
+}
+
+InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin, const Eigen::VectorXd& wantedDepth,
+                            const InsideSkinWarpOptions& options) {
+  if (V.rows() == 0) throw UsageError("warpIntoSkin: no vertices");
+  const auto allowed = [](double w) { return w <= 0 || w == std::numeric_limits<double>::infinity(); };
+  if (wantedDepth.size() != V.rows() || !std::all_of(wantedDepth.begin(), wantedDepth.end(), allowed))
+    throw UsageError("warpIntoSkin: a wanted depth per vertex, at most 0 or +infinity, is needed");
+  if (!(options.marginMm >= 0 && options.radiusMm > 0 && options.rounds >= 0))
+    throw UsageError("warpIntoSkin: options out of range");
+  InsideSkinWarp warp;
+  warp.radiusMm = options.radiusMm;
+  MatrixX3d X = V;
+  SkinDistances d = skin(X);
+  warp.outsideBefore = long(outsideRows(d, wantedDepth).size());
+  for (int round = 0; round < options.rounds && !outsideRows(d, wantedDepth).empty(); ++round) {
+    addRound(X, d, wantedDepth, warp);
+    X += kernelSum(X, warp.centres.back(), warp.coefficients.back(), warp.radiusMm);
+    d = skin(X);
+  }
+  warp.outsideAfter = long(outsideRows(d, wantedDepth).size());
+  warp.largestMoveMm = (X - V).rowwise().norm().maxCoeff();
+  return warp;
+}
+
+InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin, const InsideSkinWarpOptions& options) {
+  return warpIntoSkin(V, skin, Eigen::VectorXd::Constant(V.rows(), -options.marginMm), options);
+}
+
+}  // namespace vesalius::transfer
