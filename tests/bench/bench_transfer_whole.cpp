@@ -117,7 +117,8 @@ double fields(const Transfer& t) { return stage(t, "skin field") + stage(t, "fin
 
 // The report's stages that the table's columns show, in their order.
 const std::vector<std::string> kShownStages{"reading", "skin registration", "erosion", "sub-fat registration",
-                                            "inside mask", "eroded skin distance", "skin field", "bone registration",
+                                            "inside mask", "eroded skin distance", "reference skin distance",
+                                            "skin field", "bone registration",
                                             "final field", "checks", "writing"};
 
 // Exits if the report of `t` has a stage that no column shows: its time would be in no column and the
@@ -147,10 +148,11 @@ void printRow(const std::string& name, const char* solver, const Transfer& t) {
   double staged = 0;
   for (const nlohmann::json& s : t.report["stages"]) staged += s["seconds"].get<double>();
   const nlohmann::json& it = t.report["metrics"]["laplace_iterations"];
-  std::printf("| %s | %s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s (%d/%d/%d it) | %.2f s | %.1f s (%d/%d/%d it) | "
+  std::printf("| %s | %s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s (%d/%d/%d it) | %.2f s | %.1f s (%d/%d/%d it) | "
               "%.1f s | %.1f s | %.1f s | **%.1f s** | %.1f s | %.0f MB |\n",
               name.c_str(), solver, stage(t, "skin registration"), stage(t, "erosion") + stage(t, "sub-fat registration"),
-              stage(t, "inside mask"), stage(t, "eroded skin distance"), stage(t, "skin field"),
+              stage(t, "inside mask"), stage(t, "eroded skin distance"), stage(t, "reference skin distance"),
+              stage(t, "skin field"),
               it["skin_field"][0].get<int>(), it["skin_field"][1].get<int>(), it["skin_field"][2].get<int>(),
               stage(t, "bone registration"), stage(t, "final field"), it["final_field"][0].get<int>(),
               it["final_field"][1].get<int>(), it["final_field"][2].get<int>(), stage(t, "checks"),
@@ -176,8 +178,9 @@ int main(int argc, char** argv) {
   fs::create_directories(work);
   for (const std::string& name : cases) caseArguments(name, work);  // the inputs, before any timing
   std::printf("| case | Laplace solver | registration | erosion + sub-fat registration | inside mask | "
-              "eroded skin distance | skin field | bones | final field | checks | reading + writing | rest | "
-              "total wall | CPU | peak memory |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "eroded skin distance | reference skin distance | skin field | bones | final field | checks | "
+              "reading + writing | rest | total wall | CPU | peak memory |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> ratios;
   for (const std::string& name : cases) {
     const double loadBefore = bench::loadAverage();
