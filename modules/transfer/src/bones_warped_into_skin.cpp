@@ -74,16 +74,23 @@ InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin
     throw UsageError("warpIntoSkin: options out of range");
   InsideSkinWarp warp;
   warp.radiusMm = options.radiusMm;
-  MatrixX3d X = V;
+  MatrixX3d X = V, best = V;
   SkinDistances d = skin(X);
-  warp.outsideBefore = long(outsideRows(d, wantedDepth).size());
-  for (int round = 0; round < options.rounds && !outsideRows(d, wantedDepth).empty(); ++round) {
+  warp.outsideBefore = warp.outsideAfter = long(outsideRows(d, wantedDepth).size());
+  std::size_t bestRounds = 0;
+  for (int round = 0; round < options.rounds && warp.outsideAfter > 0; ++round) {
     addRound(X, d, wantedDepth, warp);
     X += kernelSum(X, warp.centres.back(), warp.coefficients.back(), warp.radiusMm);
     d = skin(X);
+    const long outside = long(outsideRows(d, wantedDepth).size());
+    if (outside < warp.outsideAfter) warp.outsideAfter = outside, bestRounds = warp.centres.size(), best = X;
   }
-  warp.outsideAfter = long(outsideRows(d, wantedDepth).size());
-  warp.largestMoveMm = (X - V).rowwise().norm().maxCoeff();
+  // Where a vertex sits between two sides of the skin (between toes), pushing it out of one side can push
+  // it or its neighbours out of the other, and later rounds undo earlier gains: the rounds up to the one
+  // that left the fewest outside are kept.
+  warp.centres.resize(bestRounds);
+  warp.coefficients.resize(bestRounds);
+  warp.largestMoveMm = (best - V).rowwise().norm().maxCoeff();
   return warp;
 }
 

@@ -12,8 +12,10 @@
 // u(x) = Σ_i φ(|x − x_i|) c_i with Wendland's compactly supported C² kernel φ(r) = (1 − r/R)⁴ (4r/R + 1)
 // takes c from (Φ + λ I) c = δ over those vertices (λ = 1: a lone vertex moves half its way in one round,
 // a cluster nearly all of it; no overshoot between close centres, as exact interpolation would have). The
-// rounds compose until no vertex is outside or `rounds` is reached. u is smooth (C²) and fades to nothing
-// at R from every vertex that was outside, so a bone is bent, not dented, and its far parts stay.
+// rounds compose until no vertex is outside or `rounds` is reached, and the rounds up to the one that
+// left the fewest outside are kept (between two sides of the skin, as between toes, later rounds can
+// undo earlier gains). u is smooth (C²) and fades to nothing at R from every vertex that was outside, so
+// a bone is bent, not dented, and its far parts stay.
 #pragma once
 
 #include "vesalius/core/mesh.h"
