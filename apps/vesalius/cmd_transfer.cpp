@@ -298,6 +298,8 @@ void runTransfer(const TransferOptions& o) {
   report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
   report.metric("jacobian_min_at", {jacobian.whereMinimum.x(), jacobian.whereMinimum.y(), jacobian.whereMinimum.z()});
   report.metric("jacobian_interior_min", jacobian.interiorMinimum);
+  report.metric("jacobian_interior_min_at",
+                {jacobian.whereInteriorMinimum.x(), jacobian.whereInteriorMinimum.y(), jacobian.whereInteriorMinimum.z()});
   report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
   TriMesh body = reference.skin;
   body.V = registered.V;

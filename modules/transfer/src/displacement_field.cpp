@@ -122,7 +122,7 @@ JacobianSummary jacobianDeterminant(const DisplacementField& field) {
   const Eigen::Matrix3d indexPerWorld = (g.direction * g.spacing.asDiagonal()).inverse();
   JacobianSummary summary;
   summary.minimum = summary.interiorMinimum = std::numeric_limits<double>::infinity();
-  std::int64_t minimumCell = -1;
+  std::int64_t minimumCell = -1, interiorMinimumCell = -1;
   for (int k = 1; k + 1 < g.size.z(); ++k)
     for (int j = 1; j + 1 < g.size.y(); ++j)
       for (int i = 1; i + 1 < g.size.x(); ++i) {
@@ -148,16 +148,16 @@ JacobianSummary jacobianDeterminant(const DisplacementField& field) {
         if (!interior) continue;
         ++summary.interiorCells;
         if (det <= 0) ++summary.interiorNonPositiveCells;
-        summary.interiorMinimum = std::min(summary.interiorMinimum, det);
+        if (det < summary.interiorMinimum) summary.interiorMinimum = det, interiorMinimumCell = c;
       }
-  if (minimumCell >= 0) {
-    const int i = int(minimumCell % g.size.x()), j = int(minimumCell / g.size.x() % g.size.y()),
-              k = int(minimumCell / (std::int64_t(g.size.x()) * g.size.y()));
-    summary.whereMinimum = g.indexToWorld(Eigen::Vector3d(i, j, k));
-  } else {
-    summary.minimum = 0;
-  }
-  if (summary.interiorCells == 0) summary.interiorMinimum = 0;
+  const auto centre = [&g](std::int64_t c) {
+    return g.indexToWorld(Eigen::Vector3d(double(c % g.size.x()), double(c / g.size.x() % g.size.y()),
+                                          double(c / (std::int64_t(g.size.x()) * g.size.y()))));
+  };
+  if (minimumCell >= 0) summary.whereMinimum = centre(minimumCell);
+  else summary.minimum = 0;
+  if (interiorMinimumCell >= 0) summary.whereInteriorMinimum = centre(interiorMinimumCell);
+  else summary.interiorMinimum = 0;
   return summary;
 }
 

@@ -63,6 +63,7 @@ struct JacobianSummary {
   // the interpolation's own and not the fixed values' (a fold there is the solver's, one at the fixed
   // shell comes from the given displacements).
   double interiorMinimum = 0;
+  Eigen::Vector3d whereInteriorMinimum = Eigen::Vector3d::Zero();  // world position of that cell
   std::int64_t interiorCells = 0, interiorNonPositiveCells = 0;
 };
 JacobianSummary jacobianDeterminant(const DisplacementField& field);
