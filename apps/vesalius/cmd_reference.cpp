@@ -246,21 +246,21 @@ void moveBonesInsideSkin(ReferenceAnatomy& anatomy, const MatrixX3d& joints, io:
     const transfer::InsideSkinCorrection c =
         transfer::correctionIntoSkin(V, near, skin,
                                      anatomy.tissues[members[0]].symmetric ? &anatomy.sagittal : nullptr);
-    const transfer::InsideSkinWarp warp = transfer::warpIntoSkin(c.change.apply(V), skin);
-    for (const std::size_t t : members) anatomy.tissues[t].mesh.V = warp.apply(c.change.apply(anatomy.tissues[t].mesh.V));
+    const transfer::InsideSkinWarp bend = transfer::warpIntoSkin(c.change.apply(V), skin);
+    for (const std::size_t t : members) anatomy.tissues[t].mesh.V = bend.apply(c.change.apply(anatomy.tissues[t].mesh.V));
     for (ReferencePoint& p : anatomy.points)
       if (unitOfTissue.count(p.tissue) && unitOfTissue.at(p.tissue) == unit)
-        p.position = warp.apply(c.change.apply(p.position).transpose()).transpose();
+        p.position = bend.apply(c.change.apply(p.position).transpose()).transpose();
     const Eigen::Vector3d centroid = V.colwise().mean().transpose();
     changes[unit] = {{"outside_before", c.outsideBefore}, {"outside_after_change", c.outsideAfter},
-                     {"outside_after", warp.outsideAfter}, {"warp_largest_mm", warp.largestMoveMm},
+                     {"outside_after", bend.outsideAfter}, {"bend_largest_mm", bend.largestMoveMm},
                      {"scale", c.change.scale},
                      {"turn_degrees", Eigen::AngleAxisd(c.change.rotation).angle() * 180.0 / M_PI},
                      {"centroid_shift_mm", (c.change.apply(centroid) - centroid).norm()},
                      {"joints", near.rows()},
                      {"joint_shift_mm", near.rows() ? (c.change.apply(near) - near).rowwise().norm().maxCoeff() : 0.0}};
     before += c.outsideBefore;
-    after += warp.outsideAfter;
+    after += bend.outsideAfter;
   }
   report.metric("bones_into_skin", changes);
   report.metric("bone_vertices_outside_skin_before", before);

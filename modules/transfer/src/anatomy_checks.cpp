@@ -80,7 +80,8 @@ SkinDistances sampleSkinDistances(const Grid<float>& distance, const MatrixX3d& 
   MatrixX3d gradient(V.rows(), 3);
   for (int k = 0; k < 3; ++k) {
     const MatrixX3d step = (h * Eigen::Vector3d::Unit(k)).transpose().replicate(V.rows(), 1);
-    gradient.col(k) = (sampleSignedDistance(distance, V + step, offGrid) - sampleSignedDistance(distance, V - step, offGrid)) / (2 * h);
+    gradient.col(k) =
+        (sampleSignedDistance(distance, V + step, offGrid) - sampleSignedDistance(distance, V - step, offGrid)) / (2 * h);
   }
   for (Eigen::Index r = 0; r < V.rows(); ++r) {
     if (!std::isfinite(out.distance[r]) || !gradient.row(r).allFinite()) {

@@ -47,7 +47,7 @@ struct InsideSkinWarp {
 // V: the bones' vertices (#V by 3, world mm). wantedDepth: per row of V, the signed distance a row that
 // ends outside should be moved to (at most 0), or +∞ for a row to leave alone; the rows left alone are not
 // counted in outsideBefore, outsideAfter. Throws UsageError for no vertices, a wantedDepth of other
-// length or above 0, or options out of range.
+// length or above 0 (but +∞), or options out of range.
 InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin, const Eigen::VectorXd& wantedDepth,
                             const InsideSkinWarpOptions& options = {});
 // The same with every row wanted options.marginMm deep.
