@@ -35,7 +35,12 @@ std::vector<BoneGroupMap> boneGroups(const ReferenceAnatomy& reference) {
     if (tissue.kind != TissueKind::Bone) continue;
     const std::string name = tissue.group.empty() ? tissue.name : tissue.group;
     const auto [it, inserted] = index.emplace(name, int(groups.size()));
-    if (inserted) groups.push_back({name, {}, tissue.symmetric, !tissue.symmetric, {}, 0});
+    if (inserted) {
+      groups.emplace_back();
+      groups.back().group = name;
+      groups.back().symmetric = tissue.symmetric;
+      groups.back().longBones = !tissue.symmetric;
+    }
     groups[it->second].tissues.push_back(t);
     groups[it->second].longBones = groups[it->second].longBones && isLongBone(tissue.mesh.V);
   }
