@@ -333,7 +333,7 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   // vertex a voxel or more inside the reference skin ends outside the target's (session 19: 1; 7; 250). Session
   // 17's steps alone: the bone maps kept inside 0, 4,820, 17; the moved reference 70 folds (at the lumbar
   // spine), 3,659, 95 (docs/methods/anatomy-transfer.md).
-  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 2);
+  EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
   EXPECT_LE(m["target_outside_vertices"].get<long>(), 30);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }
@@ -341,8 +341,9 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
 // The same reference into the muscular MakeHuman body, whose chest is larger: the trunk's map grows
 // (determinant about 2), and with the skull in it (before session 15) it carried the skull into the face:
 // 213 folded interior cells, 199 of them in the head. Measured now (session 20, the reference's bones all
-// inside its skin but 10 toe vertices, what the bone maps leave outside bent inside): 2 folds (minimum
-// -0.12; session 19: 3, -0.21; session 17: 12, -0.39; session 16: 39, -0.72); 4 of 30,751 tissue vertices
+// inside its skin but 10 toe vertices, what the bone maps leave outside bent inside, the final field free
+// where two groups' bones meet): no fold (minimum 0.044; 2 folds, -0.12, at L5 on the sacrum while bone
+// vertices there fixed the field; session 19: 3, -0.21; session 17: 12, -0.39; session 16: 39, -0.72); 4 of 30,751 tissue vertices
 // outside the target's skin, toes (585 bent; session 19: 1,098; 3,404; 6,110); no deep vertex pushed out (68: ribs and scapulae 44, toes 24; 222); the hands' skin 1.3 mm off its true place, the forearms' 11.1 mm. R1 holds
 // since the long bones' maps keep their width to their length (session 19, fitLongBoneMap): the arms'
 // affine maps had taken in the muscle (determinants humerus 2.5, radius 2.6, ulna 3.4) and bowed the
@@ -358,7 +359,7 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(muscular));
   EXPECT_LT(hands, 4.0);
   EXPECT_LT(forearms, 13.0);
-  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 3);
+  EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
   EXPECT_LE(m["target_outside_vertices"].get<long>(), 30);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }
@@ -391,7 +392,7 @@ TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, thin);
   EXPECT_LT(hands, 6.5);
   EXPECT_LT(forearms, 13.5);
-  EXPECT_LE(m["jacobian_interior_nonpositive_cells"].get<long>(), 2);
+  EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
   EXPECT_LE(m["target_outside_vertices"].get<long>(), 30);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <limits>
 #include <map>
+#include <unordered_map>
 
 namespace vesalius::transfer {
 
@@ -68,10 +69,48 @@ bool deepInside(const Grid<std::uint8_t>& inside, const Eigen::Vector3d& p) {
 
 // The rows of `rest` (and the same rows of `displacement`) that lie deep inside the body.
 void appendDeepRows(const Grid<std::uint8_t>& inside, const MatrixX3d& rest, const MatrixX3d& displacement,
-                    std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector3d>& values) {
+                    std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector3d>& values,
+                    const std::vector<bool>& skip = {}) {
   for (Eigen::Index r = 0; r < rest.rows(); ++r)
-    if (deepInside(inside, rest.row(r).transpose()))
+    if (deepInside(inside, rest.row(r).transpose()) && (skip.empty() || !skip[std::size_t(r)]))
       points.push_back(rest.row(r).transpose()), values.push_back(displacement.row(r).transpose());
+}
+
+// Per bone tissue, its rows (rest positions) within `reach` cells of another group's bone: at a joint two
+// groups' maps disagree (the muscular body's L5 comes down onto its sacrum, docs/methods/anatomy-transfer.md),
+// and their fixed cells a couple of cells apart fold the free cells between them. Those rows fix nothing
+// in the final field, which then passes from one map to the other harmonically; the bones still move by
+// their own maps.
+std::vector<std::vector<bool>> rowsAtJoints(const std::vector<BoneGroupMap>& groups, const std::vector<MatrixX3d>& rest,
+                                            const GridGeometry& g, int reach) {
+  const auto cellOf = [&g](const MatrixX3d& V, Eigen::Index r) -> Eigen::Vector3i {
+    return g.worldToIndex(V.row(r).transpose()).array().round().cast<int>();
+  };
+  std::unordered_map<std::int64_t, int> owner;  // cell → the group whose bone is in it, −1 for several
+  for (int gi = 0; gi < int(groups.size()); ++gi)
+    for (const int t : groups[gi].tissues)
+      for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
+        const Eigen::Vector3i c = cellOf(rest[t], r);
+        if (!g.contains(c.x(), c.y(), c.z())) continue;
+        const auto [it, inserted] = owner.emplace(g.linearIndex(c.x(), c.y(), c.z()), gi);
+        if (!inserted && it->second != gi) it->second = -1;
+      }
+  std::vector<std::vector<bool>> atJoint(rest.size());
+  for (int gi = 0; gi < int(groups.size()); ++gi)
+    for (const int t : groups[gi].tissues) {
+      atJoint[t].assign(std::size_t(rest[t].rows()), false);
+      for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
+        const Eigen::Vector3i c = cellOf(rest[t], r);
+        for (int dk = -reach; dk <= reach; ++dk)
+          for (int dj = -reach; dj <= reach; ++dj)
+            for (int di = -reach; di <= reach; ++di) {
+              if (!g.contains(c.x() + di, c.y() + dj, c.z() + dk)) continue;
+              const auto it = owner.find(g.linearIndex(c.x() + di, c.y() + dj, c.z() + dk));
+              if (it != owner.end() && it->second != gi) atJoint[t][std::size_t(r)] = true;
+            }
+      }
+    }
+  return atJoint;
 }
 
 MatrixX3d toMatrix(const std::vector<Eigen::Vector3d>& rows) {
@@ -201,9 +240,11 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   result.secondsBones = secondsSince(start);
 
   start = std::chrono::steady_clock::now();
+  const std::vector<std::vector<bool>> atJoints =
+      rowsAtJoints(result.boneGroups, rest, referenceInside.geometry, options.jointFreeCells);
   for (const BoneGroupMap& group : result.boneGroups)
     for (const int t : group.tissues)
-      appendDeepRows(referenceInside, rest[t], group.place(rest[t]) - rest[t], fixedPoints, fixedValues);
+      appendDeepRows(referenceInside, rest[t], group.place(rest[t]) - rest[t], fixedPoints, fixedValues, atJoints[t]);
   result.finalField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues),
                                                options.field, &result.skinField);
   for (int t = 0; t < int(reference.tissues.size()); ++t)

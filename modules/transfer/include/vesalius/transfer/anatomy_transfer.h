@@ -21,8 +21,9 @@
 //   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
 //      every other tissue and every point not on a bone moves by it. Bone vertices less than a cell deep
 //      inside the reference skin do not fix the field: there the skin's value wins, as two fixed shells
-//      a cell apart with different values fold the field between them. Bones and the points fixed to them
-//      move by their affine maps, and bends, exactly (rules R1, R7).
+//      a cell apart with different values fold the field between them; for the same reason neither do
+//      bone vertices within two cells of another group's bone, where the two groups' maps meet at a joint.
+//      Bones and the points fixed to them move by their affine maps, and bends, exactly (rules R1, R7).
 // The grid is the caller's (it covers the reference skin and every tissue), with the reference body's
 // inside mask on it; the field runs in reference space, as the seed's.
 #pragma once
@@ -52,6 +53,9 @@ struct AnatomyTransferOptions {
   double insideWeightGrowth = 2.0; // a shallower vertex's spring is stiffened by this factor per pass
   double insideMaxWeight = 1024;   // up to this stiffness (the others' is 1)
   int insidePasses = 100;          // at most this many fits
+  // Step 3: bone vertices within this many cells of another group's bone fix nothing in the final field
+  // (where two groups' maps meet at a joint; rowsAtJoints in anatomy_transfer.cpp).
+  int jointFreeCells = 2;
 };
 
 struct BoneGroupMap {
