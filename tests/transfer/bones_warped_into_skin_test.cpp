@@ -73,6 +73,40 @@ TEST(BonesWarpedIntoSkin, WantedDepthsPerVertex) {
   EXPECT_THROW(warpIntoSkin(V, sphereDistances, Eigen::VectorXd::Constant(3, -1.0)), UsageError);
 }
 
+// Two toes of skin (cylinders along y of radius 5 mm, 12 mm apart, a cleft of 2 mm between) round two
+// toes of bone side by side (radius 3 mm, 6 mm apart) that fill the cleft: each bone toe must move out its
+// own way. A bend as long as a limb does not part them; the stage at a toe's reach does.
+SkinDistances twoToes(const MatrixX3d& P) {
+  SkinDistances d{Eigen::VectorXd(P.rows()), MatrixX3d(P.rows(), 3)};
+  for (Eigen::Index r = 0; r < P.rows(); ++r) {
+    const Eigen::Vector3d axis(P(r, 0) < 0 ? -6.0 : 6.0, P(r, 1), 0.0), away = P.row(r).transpose() - axis;
+    d.distance[r] = away.norm() - 5.0;
+    d.outward.row(r) = away.normalized().transpose();
+  }
+  return d;
+}
+
+TEST(BonesWarpedIntoSkin, TwoToesArePartedByTheShorterReach) {
+  MatrixX3d V(2 * 21 * 8, 3);
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i <= 20; ++i)
+      for (int k = 0; k < 8; ++k) {
+        const double angle = 2 * M_PI * k / 8;
+        V.row((side * 21 + i) * 8 + k) << (side ? 3.0 : -3.0) + 3 * std::cos(angle), 2.0 * i, 3 * std::sin(angle);
+      }
+  InsideSkinWarpOptions coarse;
+  coarse.radiiMm = {60.0};
+  const InsideSkinWarp limb = warpIntoSkin(V, twoToes, coarse), toe = warpIntoSkin(V, twoToes);
+  const Eigen::VectorXd d = twoToes(toe.apply(V)).distance;
+  std::printf("outside before %ld, after the limb's reach %ld, after the toe's %ld (largest move %.2f mm, shallowest "
+              "%.2f mm)\n", toe.outsideBefore, limb.outsideAfter, toe.outsideAfter, toe.largestMoveMm, -d.maxCoeff());
+  EXPECT_EQ(toe.outsideBefore, 2 * 21 * 3);  // the three inner vertices of every ring
+  EXPECT_GT(limb.outsideAfter, 0);           // measured 8
+  EXPECT_EQ(toe.outsideAfter, 0);
+  EXPECT_LE(d.maxCoeff(), 0.0);
+  EXPECT_LT(toe.largestMoveMm, 6.0);  // from the cleft's middle to the margin inside a toe: 2.5 mm at least
+}
+
 TEST(BonesWarpedIntoSkin, ABoneInsideIsNotMoved) {
   const MatrixX3d V = bar(-50.0);
   const InsideSkinWarp warp = warpIntoSkin(V, sphereDistances);
@@ -84,7 +118,7 @@ TEST(BonesWarpedIntoSkin, ABoneInsideIsNotMoved) {
 TEST(BonesWarpedIntoSkin, BadInput) {
   EXPECT_THROW(warpIntoSkin(MatrixX3d(0, 3), sphereDistances), UsageError);
   InsideSkinWarpOptions o;
-  o.radiusMm = 0;
+  o.radiiMm = {60.0, 0.0};
   EXPECT_THROW(warpIntoSkin(bar(0.0), sphereDistances, o), UsageError);
 }
 

@@ -39,8 +39,8 @@ std::vector<Eigen::Index> outsideRows(const SkinDistances& d, const Eigen::Vecto
   return rows;
 }
 
-// One round's centres (the rows of X outside the skin) and coefficients (Φ + I) c = δ.
-void addRound(const MatrixX3d& X, const SkinDistances& d, const Eigen::VectorXd& wanted, InsideSkinWarp& warp) {
+// One round's centres (the rows of X outside the skin) and coefficients (Φ + I) c = δ, at reach R.
+void addRound(const MatrixX3d& X, const SkinDistances& d, const Eigen::VectorXd& wanted, double R, InsideSkinWarp& warp) {
   const std::vector<Eigen::Index> outside = outsideRows(d, wanted);
   const auto n = Eigen::Index(outside.size());
   MatrixX3d centres(n, 3), wishes(n, 3);
@@ -51,7 +51,8 @@ void addRound(const MatrixX3d& X, const SkinDistances& d, const Eigen::VectorXd&
   }
   Eigen::MatrixXd gram = Eigen::MatrixXd::Identity(n, n);
   for (Eigen::Index a = 0; a < n; ++a)
-    for (Eigen::Index b = 0; b < n; ++b) gram(a, b) += wendland((centres.row(a) - centres.row(b)).norm(), warp.radiusMm);
+    for (Eigen::Index b = 0; b < n; ++b) gram(a, b) += wendland((centres.row(a) - centres.row(b)).norm(), R);
+  warp.radiiMm.push_back(R);
   warp.centres.push_back(centres);
   warp.coefficients.push_back(gram.ldlt().solve(Eigen::MatrixXd(wishes)));
 }
@@ -60,9 +61,34 @@ void addRound(const MatrixX3d& X, const SkinDistances& d, const Eigen::VectorXd&
 
 MatrixX3d InsideSkinWarp::apply(const MatrixX3d& P) const {
   MatrixX3d X = P;
-  for (std::size_t r = 0; r < centres.size(); ++r) X += kernelSum(X, centres[r], coefficients[r], radiusMm);
+  for (std::size_t r = 0; r < centres.size(); ++r) X += kernelSum(X, centres[r], coefficients[r], radiiMm[r]);
   return X;
 }
+
+namespace {
+
+// Up to `rounds` rounds at reach R from X (the warp so far, `outside` of its rows still outside), the
+// rounds up to the one that left the fewest outside kept: where a vertex sits between two sides of the
+// skin (between toes), pushing it out of one side can push it or its neighbours out of the other, and
+// later rounds undo earlier gains. X and `outside` become the kept rounds' result.
+void addStage(MatrixX3d& X, long& outside, const SkinDistanceFunction& skin, const Eigen::VectorXd& wanted, double R,
+              int rounds, InsideSkinWarp& warp) {
+  MatrixX3d Y = X;
+  SkinDistances d = skin(Y);
+  std::size_t kept = warp.centres.size();
+  for (int round = 0; round < rounds && outside > 0; ++round) {
+    addRound(Y, d, wanted, R, warp);
+    Y += kernelSum(Y, warp.centres.back(), warp.coefficients.back(), R);
+    d = skin(Y);
+    const long left = long(outsideRows(d, wanted).size());
+    if (left < outside) outside = left, kept = warp.centres.size(), X = Y;
+  }
+  warp.radiiMm.resize(kept);
+  warp.centres.resize(kept);
+  warp.coefficients.resize(kept);
+}
+
+}  // namespace
 
 InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin, const Eigen::VectorXd& wantedDepth,
                             const InsideSkinWarpOptions& options) {
@@ -70,27 +96,14 @@ InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin
   const auto allowed = [](double w) { return w <= 0 || w == std::numeric_limits<double>::infinity(); };
   if (wantedDepth.size() != V.rows() || !std::all_of(wantedDepth.begin(), wantedDepth.end(), allowed))
     throw UsageError("warpIntoSkin: a wanted depth per vertex, at most 0 or +infinity, is needed");
-  if (!(options.marginMm >= 0 && options.radiusMm > 0 && options.rounds >= 0))
+  const auto positive = [](double R) { return R > 0; };
+  if (!(options.marginMm >= 0 && options.rounds >= 0 && std::all_of(options.radiiMm.begin(), options.radiiMm.end(), positive)))
     throw UsageError("warpIntoSkin: options out of range");
   InsideSkinWarp warp;
-  warp.radiusMm = options.radiusMm;
-  MatrixX3d X = V, best = V;
-  SkinDistances d = skin(X);
-  warp.outsideBefore = warp.outsideAfter = long(outsideRows(d, wantedDepth).size());
-  std::size_t bestRounds = 0;
-  for (int round = 0; round < options.rounds && warp.outsideAfter > 0; ++round) {
-    addRound(X, d, wantedDepth, warp);
-    X += kernelSum(X, warp.centres.back(), warp.coefficients.back(), warp.radiusMm);
-    d = skin(X);
-    const long outside = long(outsideRows(d, wantedDepth).size());
-    if (outside < warp.outsideAfter) warp.outsideAfter = outside, bestRounds = warp.centres.size(), best = X;
-  }
-  // Where a vertex sits between two sides of the skin (between toes), pushing it out of one side can push
-  // it or its neighbours out of the other, and later rounds undo earlier gains: the rounds up to the one
-  // that left the fewest outside are kept.
-  warp.centres.resize(bestRounds);
-  warp.coefficients.resize(bestRounds);
-  warp.largestMoveMm = (best - V).rowwise().norm().maxCoeff();
+  MatrixX3d X = V;
+  warp.outsideBefore = warp.outsideAfter = long(outsideRows(skin(X), wantedDepth).size());
+  for (const double R : options.radiiMm) addStage(X, warp.outsideAfter, skin, wantedDepth, R, options.rounds, warp);
+  warp.largestMoveMm = (X - V).rowwise().norm().maxCoeff();
   return warp;
 }
 

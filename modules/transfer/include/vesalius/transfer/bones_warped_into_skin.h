@@ -14,8 +14,10 @@
 // a cluster nearly all of it; no overshoot between close centres, as exact interpolation would have). The
 // rounds compose until no vertex is outside or `rounds` is reached, and the rounds up to the one that
 // left the fewest outside are kept (between two sides of the skin, as between toes, later rounds can
-// undo earlier gains). u is smooth (C²) and fades to nothing at R from every vertex that was outside, so
-// a bone is bent, not dented, and its far parts stay.
+// undo earlier gains). Then the same at a shorter reach from where that left the bones: a bend as long
+// as a limb bone cannot tell the two sides of a toe apart, one as long as a toe can (MakeHuman's toes
+// are apart where Rajagopal's five toes are one mesh). u is smooth (C²) and fades to nothing at R from
+// every vertex that was outside, so a bone is bent, not dented, and its far parts stay.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -29,14 +31,16 @@ namespace vesalius::transfer {
 
 struct InsideSkinWarpOptions {
   double marginMm = 1.5;   // how far inside every vertex should end (unless given per vertex)
-  double radiusMm = 60.0;  // R: the kernel's support, how far the bend reaches along a bone
-  int rounds = 20;         // at most (each measures the distances once)
+  // R: the kernel's support, how far the bend reaches along a bone; one stage of rounds per reach, coarse
+  // to fine
+  std::vector<double> radiiMm{60.0, 15.0};
+  int rounds = 20;  // at most, per stage (each round measures the distances once)
 };
 
 // The displacement, one round after another; apply() carries any point (a bone's vertices, the points
 // fixed to the bone) through all of them.
 struct InsideSkinWarp {
-  double radiusMm = 60.0;
+  std::vector<double> radiiMm;          // per round: R
   std::vector<MatrixX3d> centres;       // per round, #A by 3: the vertices that were outside
   std::vector<MatrixX3d> coefficients;  // per round, #A by 3: c
   long outsideBefore = 0, outsideAfter = 0;
