@@ -301,6 +301,8 @@ void runTransfer(const TransferOptions& o) {
   report.metric("jacobian_interior_min_at",
                 {jacobian.whereInteriorMinimum.x(), jacobian.whereInteriorMinimum.y(), jacobian.whereInteriorMinimum.z()});
   report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
+  report.metric("unfold_passes", result.finalField.unfoldPasses);
+  report.metric("unfold_released_cells", result.finalField.releasedCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
   reportInside(referenceBody, fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, result, o.voxelSize,

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
 using namespace vesalius;
 using namespace vesalius::transfer;
 
@@ -118,4 +122,37 @@ TEST(DisplacementField, SecondSolveStartsFromTheFirst) {
   const DisplacementField second = interpolateDisplacements(body.inside, body.skin.V, u, {}, &first);
   EXPECT_LE(second.solves[0].iterations, 1);
   EXPECT_GT(first.solves[0].iterations, 1);
+}
+
+// A bone (a sphere of radius 30 mm) inside a skin (radius 40 mm), both moved by one affine map, the bone's
+// cap above z = 20 mm pushed up to 14 mm further out, through the skin: the cells between fold. Freeing
+// the fixed cells at the folds (unfoldPasses) unfolds them; the field away from the cap keeps its values.
+TEST(DisplacementField, FreeingTheFixedCellsAtFoldsUnfoldsThem) {
+  const Body body = sphereBody(40, 2);
+  const MatrixX3d bone = test::sphere(4, 30).V;
+  MatrixX3d P(body.skin.V.rows() + bone.rows(), 3);
+  P << body.skin.V, bone;
+  MatrixX3d u = affineDisplacement(P, kM, kC);
+  for (Eigen::Index r = body.skin.V.rows(); r < P.rows(); ++r)
+    if (P(r, 2) > 20) u.row(r) += 1.4 * (P(r, 2) - 20) * P.row(r).normalized();
+  DisplacementFieldOptions options;
+  const JacobianSummary folded = jacobianDeterminant(interpolateDisplacements(body.inside, P, u, options));
+  options.unfoldPasses = 40;
+  const DisplacementField field = interpolateDisplacements(body.inside, P, u, options);
+  const JacobianSummary unfolded = jacobianDeterminant(field);
+  const auto fixedCells = std::count(field.roles.begin(), field.roles.end(), CellRole::Fixed);
+  std::printf("folded cells %lld (minimum %.2f) -> %lld (minimum %.2f) in %d passes, %lld fixed cells freed, %lld kept\n",
+              (long long)folded.nonPositiveCells, folded.minimum, (long long)unfolded.nonPositiveCells,
+              unfolded.minimum, field.unfoldPasses, (long long)field.releasedCells, (long long)fixedCells);
+  EXPECT_GT(folded.nonPositiveCells, 0);
+  EXPECT_EQ(unfolded.nonPositiveCells, 0);
+  EXPECT_GT(field.releasedCells, 0);
+  EXPECT_LT(field.releasedCells, fixedCells / 5);
+  // Below the cap the bone's and skin's cells stay fixed: the field there is the affine map to the splat's
+  // first order (as SkinVerticesGiveTheFieldToFirstOrderInTheSpacing).
+  std::vector<Eigen::Index> below;
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    if (P(r, 2) < 0) below.push_back(r);
+  const MatrixX3d B = P(below, Eigen::all);
+  EXPECT_LT((field.displace(B) - B - affineDisplacement(B, kM, kC)).cwiseAbs().maxCoeff(), 0.3);
 }

@@ -245,8 +245,10 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   for (const BoneGroupMap& group : result.boneGroups)
     for (const int t : group.tissues)
       appendDeepRows(referenceInside, rest[t], group.place(rest[t]) - rest[t], fixedPoints, fixedValues, atJoints[t]);
+  DisplacementFieldOptions finalOptions = options.field;
+  finalOptions.unfoldPasses = options.finalUnfoldPasses;
   result.finalField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues),
-                                               options.field, &result.skinField);
+                                               finalOptions, &result.skinField);
   for (int t = 0; t < int(reference.tissues.size()); ++t)
     result.tissues.push_back(mapOfTissue[t] >= 0 ? result.boneGroups[mapOfTissue[t]].place(rest[t])
                                                  : result.finalField.displace(rest[t]));

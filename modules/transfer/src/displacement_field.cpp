@@ -68,6 +68,54 @@ void extrapolate(const std::vector<CellRole>& roles, int layers, std::array<Grid
   }
 }
 
+// d(index)/d(world): the inverse of direction · diag(spacing).
+Eigen::Matrix3d indexPerWorld(const GridGeometry& g) { return (g.direction * g.spacing.asDiagonal()).inverse(); }
+
+// Whether det(I + ∇u) is measured at cell (i, j, k): a free or fixed cell off the grid's border whose six
+// neighbours are free or fixed.
+bool measured(const DisplacementField& field, int i, int j, int k) {
+  const GridGeometry& g = field.geometry();
+  if (i < 1 || j < 1 || k < 1 || i + 1 >= g.size.x() || j + 1 >= g.size.y() || k + 1 >= g.size.z()) return false;
+  const std::int64_t c = g.linearIndex(i, j, k);
+  if (field.roles[c] == CellRole::Excluded) return false;
+  bool inside = true;
+  forEachNeighbour(g, c, [&](std::int64_t n) { inside = inside && field.roles[n] != CellRole::Excluded; });
+  return inside;
+}
+
+// det(I + ∇u) at cell (i, j, k), ∇u by central differences.
+double determinantAt(const DisplacementField& field, const Eigen::Matrix3d& perWorld, int i, int j, int k) {
+  Eigen::Matrix3d gradient;  // ∂u_a / ∂index_b
+  for (int a = 0; a < 3; ++a) {
+    const Grid<double>& u = field.components[a];
+    gradient(a, 0) = 0.5 * (u.at(i + 1, j, k) - u.at(i - 1, j, k));
+    gradient(a, 1) = 0.5 * (u.at(i, j + 1, k) - u.at(i, j - 1, k));
+    gradient(a, 2) = 0.5 * (u.at(i, j, k + 1) - u.at(i, j, k - 1));
+  }
+  return (Eigen::Matrix3d::Identity() + gradient * perWorld).determinant();
+}
+
+// Every fixed cell within `reach` cells (a cube) of a folded cell (det ≤ 0) becomes free; how many.
+std::int64_t releaseFoldedFixedCells(DisplacementField& field, int reach) {
+  const GridGeometry& g = field.geometry();
+  const Eigen::Matrix3d perWorld = indexPerWorld(g);
+  std::vector<std::int64_t> release;
+  for (int k = 1; k + 1 < g.size.z(); ++k)
+    for (int j = 1; j + 1 < g.size.y(); ++j)
+      for (int i = 1; i + 1 < g.size.x(); ++i) {
+        if (!measured(field, i, j, k) || determinantAt(field, perWorld, i, j, k) > 0) continue;
+        const std::int64_t c = g.linearIndex(i, j, k);
+        for (int dk = -reach; dk <= reach; ++dk)
+          for (int dj = -reach; dj <= reach; ++dj)
+            for (int di = -reach; di <= reach; ++di)
+              if (g.contains(i + di, j + dj, k + dk)) release.push_back(g.linearIndex(i + di, j + dj, k + dk));
+      }
+  std::int64_t released = 0;
+  for (const std::int64_t c : release)
+    if (field.roles[c] == CellRole::Fixed) field.roles[c] = CellRole::Free, ++released;
+  return released;
+}
+
 }  // namespace
 
 Eigen::Vector3d DisplacementField::displacementAt(const Eigen::Vector3d& p) const {
@@ -103,45 +151,51 @@ DisplacementField interpolateDisplacements(const Grid<std::uint8_t>& domain, con
   fixConstrainedVoxels(constraints, field.roles);
   excludeUnreachedCells(g, field.roles);
 
-  LaplaceInterpolator laplace(g, field.roles, options.laplace);
-  field.levels = laplace.levelCount();
   for (int a = 0; a < 3; ++a) {
     field.components[a] = initialGuess ? initialGuess->components[a] : Grid<double>(g, 0.0);
     for (std::int64_t c = 0; c < g.voxelCount(); ++c)
       if (field.roles[c] != CellRole::Free) field.components[a].values[c] = 0.0;
     writeConstraintValues(constraints, a, field.components[a]);
   }
-  field.solves = laplace.solve(field.components);
+  const auto solve = [&](const LaplaceOptions& laplaceOptions) {
+    LaplaceInterpolator laplace(g, field.roles, laplaceOptions);
+    field.levels = laplace.levelCount();
+    field.solves = laplace.solve(field.components);
+  };
+  solve(options.laplace);
+  // The passes' solves start from the last and need only find where it still folds; the last is solved
+  // to the full tolerance, and looked at again.
+  LaplaceOptions rough = options.laplace;
+  rough.tolerance = std::max(options.laplace.tolerance, options.unfoldTolerance);
+  bool roughlySolved = false;
+  for (int pass = 0; pass < options.unfoldPasses; ++pass) {
+    const std::int64_t released = releaseFoldedFixedCells(field, options.unfoldReach);
+    if (released == 0 && !roughlySolved) break;
+    excludeUnreachedCells(g, field.roles);  // a pocket whose every fixed cell was freed has no values
+    field.releasedCells += released;
+    field.unfoldPasses += released > 0;
+    roughlySolved = released > 0;
+    solve(roughlySolved ? rough : options.laplace);
+  }
+  if (roughlySolved) solve(options.laplace);
   extrapolate(field.roles, options.extrapolationLayers, field.components);
   return field;
 }
 
 JacobianSummary jacobianDeterminant(const DisplacementField& field) {
   const GridGeometry& g = field.geometry();
-  // d(index)/d(world): the inverse of direction · diag(spacing).
-  const Eigen::Matrix3d indexPerWorld = (g.direction * g.spacing.asDiagonal()).inverse();
+  const Eigen::Matrix3d perWorld = indexPerWorld(g);
   JacobianSummary summary;
   summary.minimum = summary.interiorMinimum = std::numeric_limits<double>::infinity();
   std::int64_t minimumCell = -1, interiorMinimumCell = -1;
   for (int k = 1; k + 1 < g.size.z(); ++k)
     for (int j = 1; j + 1 < g.size.y(); ++j)
       for (int i = 1; i + 1 < g.size.x(); ++i) {
+        if (!measured(field, i, j, k)) continue;
         const std::int64_t c = g.linearIndex(i, j, k);
-        if (field.roles[c] == CellRole::Excluded) continue;
-        bool inside = true, interior = field.roles[c] == CellRole::Free;
-        forEachNeighbour(g, c, [&](std::int64_t n) {
-          inside = inside && field.roles[n] != CellRole::Excluded;
-          interior = interior && field.roles[n] == CellRole::Free;
-        });
-        if (!inside) continue;
-        Eigen::Matrix3d gradient;  // ∂u_a / ∂index_b
-        for (int a = 0; a < 3; ++a) {
-          const Grid<double>& u = field.components[a];
-          gradient(a, 0) = 0.5 * (u.at(i + 1, j, k) - u.at(i - 1, j, k));
-          gradient(a, 1) = 0.5 * (u.at(i, j + 1, k) - u.at(i, j - 1, k));
-          gradient(a, 2) = 0.5 * (u.at(i, j, k + 1) - u.at(i, j, k - 1));
-        }
-        const double det = (Eigen::Matrix3d::Identity() + gradient * indexPerWorld).determinant();
+        bool interior = field.roles[c] == CellRole::Free;
+        forEachNeighbour(g, c, [&](std::int64_t n) { interior = interior && field.roles[n] == CellRole::Free; });
+        const double det = determinantAt(field, perWorld, i, j, k);
         ++summary.measuredCells;
         if (det <= 0) ++summary.nonPositiveCells;
         if (det < summary.minimum) summary.minimum = det, minimumCell = c;

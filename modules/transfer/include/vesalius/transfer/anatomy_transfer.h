@@ -56,6 +56,10 @@ struct AnatomyTransferOptions {
   // Step 3: bone vertices within this many cells of another group's bone fix nothing in the final field
   // (where two groups' maps meet at a joint; rowsAtJoints in anatomy_transfer.cpp).
   int jointFreeCells = 2;
+  // Step 3: the final field's fixed cells at or beside a fold are freed and the field solved again, up to
+  // this many times (DisplacementFieldOptions::unfoldPasses; the skin field, which moves no tissue, keeps
+  // field.unfoldPasses).
+  int finalUnfoldPasses = 40;
 };
 
 struct BoneGroupMap {

@@ -32,6 +32,14 @@ struct DisplacementFieldOptions {
   LaplaceOptions laplace;
   SplatOptions splat;
   int extrapolationLayers = 3;
+  // Up to `unfoldPasses` times: every fixed cell within `unfoldReach` cells of a folded cell (det ≤ 0,
+  // measured as jacobianDeterminant does) is freed and the field solved again. Fixed values from two
+  // surfaces a cell or two apart (the skin and a bone under it), or from a surface whose displacement
+  // turns faster than a cell (the skin's shell where the registration squeezes it), can fold the cells
+  // between; freeing them lets the field there be the interpolation's own.
+  int unfoldPasses = 0;
+  int unfoldReach = 2;
+  double unfoldTolerance = 1e-4;  // the passes' solves stop here; the last is solved to laplace.tolerance
 };
 
 struct DisplacementField {
@@ -39,6 +47,8 @@ struct DisplacementField {
   std::vector<CellRole> roles;             // what each cell was in the solve
   std::array<LaplaceSolveInfo, 3> solves;
   int levels = 0;                          // multigrid levels used
+  int unfoldPasses = 0;                    // passes that freed fixed cells (options.unfoldPasses)
+  std::int64_t releasedCells = 0;          // fixed cells they freed
 
   const GridGeometry& geometry() const { return components[0].geometry; }
   // P: #P by 3 reference points → #P by 3 moved points P + u(P), u sampled trilinearly.
