@@ -8,6 +8,7 @@
 #include "thickness_input.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/triangle_tree.h"
 #include "vesalius/fat/erode_skin.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
@@ -19,6 +20,7 @@
 #include "vesalius/transfer/skin_registration.h"
 #include "vesalius/viz/surface_render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <limits>
@@ -80,25 +82,48 @@ std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const 
   return result;
 }
 
+// Of the rows of V outside a skin (distance > 0), how many lie nearest a triangle of it (`tree` over
+// `skin`, the reference's topology) with a cut vertex: outside through a scan's cut, which is not skin (the
+// body goes on), not through the skin.
+long outsideAtCut(const TriMesh& skin, const TriangleTree& tree, const std::vector<bool>& cut, const MatrixX3d& V,
+                  const Eigen::VectorXd& distance) {
+  std::vector<Eigen::Index> outside;
+  for (Eigen::Index r = 0; r < V.rows(); ++r)
+    if (distance[r] > 0) outside.push_back(r);
+  if (outside.empty() || std::find(cut.begin(), cut.end(), true) == cut.end()) return 0;
+  long atCut = 0;
+  for (const ClosestPoint& c : tree.closest(MatrixX3d(V(outside, Eigen::all))))
+    atCut += cut[std::size_t(skin.F(c.face, 0))] || cut[std::size_t(skin.F(c.face, 1))] || cut[std::size_t(skin.F(c.face, 2))];
+  return atCut;
+}
+
 // The vertices inside the reference skin that the transfer put outside the target's (R5, R6), beside
 // those outside in the reference already and all those outside the target's skin: a segmentation's labels
 // may run a voxel past its body surface where the field of view cuts both, and no transfer should be blamed
 // for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
 // field's first-order error at the skin; `deepMm` counts those deeper apart. Both bodies include their
-// cavities (body_distance.h), whose volumes the report gives, and the vertices that lie in them.
+// cavities (body_distance.h), whose volumes the report gives, and the vertices that lie in them. Of those
+// outside, the ones at a cut are counted apart (outsideAtCut). `registered`: the reference skin registered
+// onto the target, the skin `body` measures.
 void reportInside(const BodyDistance& referenceBody, const BodyDistance& body, const ReferenceAnatomy& reference,
-                  const transfer::TransferredAnatomy& result, double deepMm, io::Report& report) {
+                  const TriMesh& registered, const transfer::TransferredAnatomy& result, double deepMm,
+                  io::Report& report) {
   std::vector<MatrixX3d> rest;
   for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
   const std::vector<Eigen::VectorXd> before = signedDistances(referenceBody.signedDistance, rest),
                                      after = signedDistances(body.signedDistance, result.tissues);
   report.metric("reference_skin_cavities_ml", referenceBody.cavitiesMl);
   report.metric("target_skin_cavities_ml", body.cavitiesMl);
+  std::vector<bool> cut(std::size_t(reference.skin.V.rows()), false);
+  for (const int v : reference.skinCutVertices) cut[std::size_t(v)] = true;
+  const TriangleTree referenceTree(reference.skin.V, reference.skin.F), targetTree(registered.V, registered.F);
   long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0, inCavitiesBefore = 0,
-       inCavitiesAfter = 0;
+       inCavitiesAfter = 0, atCutBefore = 0, atCutAfter = 0;
   double worstPushedOut = 0;
   for (std::size_t t = 0; t < rest.size(); ++t) {
+    atCutBefore += outsideAtCut(reference.skin, referenceTree, cut, rest[t], before[t]);
+    atCutAfter += outsideAtCut(registered, targetTree, cut, result.tissues[t], after[t]);
     long tissueOutsideBefore = 0, tissuePushedOut = 0, tissueDeep = 0;
     for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
       ++total;
@@ -127,6 +152,8 @@ void reportInside(const BodyDistance& referenceBody, const BodyDistance& body, c
   report.metric("tissue_vertices", total);
   report.metric("reference_outside_vertices", outsideBefore);
   report.metric("target_outside_vertices", outsideAfter);
+  report.metric("reference_outside_at_cut_vertices", atCutBefore);
+  report.metric("target_outside_at_cut_vertices", atCutAfter);
   report.metric("reference_in_cavities_vertices", inCavitiesBefore);
   report.metric("target_in_cavities_vertices", inCavitiesAfter);
   report.metric("pushed_out_vertices", pushedOut);
@@ -305,8 +332,8 @@ void runTransfer(const TransferOptions& o) {
   report.metric("unfold_released_cells", result.finalField.releasedCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
-  reportInside(referenceBody, fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, result, o.voxelSize,
-               report);
+  reportInside(referenceBody, fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, body, result,
+               o.voxelSize, report);
   reportBones(reference, result, report);
   endStage("checks");
 
