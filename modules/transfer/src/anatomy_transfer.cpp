@@ -242,16 +242,18 @@ TransferredAnatomy transferAnatomy(const ReferenceAnatomy& reference, const Matr
   start = std::chrono::steady_clock::now();
   const std::vector<std::vector<bool>> atJoints =
       rowsAtJoints(result.boneGroups, rest, referenceInside.geometry, options.jointFreeCells);
+  result.tissues.resize(reference.tissues.size());
   for (const BoneGroupMap& group : result.boneGroups)
-    for (const int t : group.tissues)
-      appendDeepRows(referenceInside, rest[t], group.place(rest[t]) - rest[t], fixedPoints, fixedValues, atJoints[t]);
+    for (const int t : group.tissues) {
+      result.tissues[t] = group.place(rest[t]);
+      appendDeepRows(referenceInside, rest[t], result.tissues[t] - rest[t], fixedPoints, fixedValues, atJoints[t]);
+    }
   DisplacementFieldOptions finalOptions = options.field;
   finalOptions.unfoldPasses = options.finalUnfoldPasses;
   result.finalField = interpolateDisplacements(referenceInside, toMatrix(fixedPoints), toMatrix(fixedValues),
                                                finalOptions, &result.skinField);
   for (int t = 0; t < int(reference.tissues.size()); ++t)
-    result.tissues.push_back(mapOfTissue[t] >= 0 ? result.boneGroups[mapOfTissue[t]].place(rest[t])
-                                                 : result.finalField.displace(rest[t]));
+    if (mapOfTissue[t] < 0) result.tissues[t] = result.finalField.displace(rest[t]);
   std::map<std::string, int> tissueIndex;
   for (int t = 0; t < int(reference.tissues.size()); ++t) tissueIndex[reference.tissues[t].name] = t;
   result.points.resize(Eigen::Index(reference.points.size()), 3);

@@ -104,7 +104,6 @@ std::int64_t releaseFoldedFixedCells(DisplacementField& field, int reach) {
     for (int j = 1; j + 1 < g.size.y(); ++j)
       for (int i = 1; i + 1 < g.size.x(); ++i) {
         if (!measured(field, i, j, k) || determinantAt(field, perWorld, i, j, k) > 0) continue;
-        const std::int64_t c = g.linearIndex(i, j, k);
         for (int dk = -reach; dk <= reach; ++dk)
           for (int dj = -reach; dj <= reach; ++dj)
             for (int di = -reach; di <= reach; ++di)
