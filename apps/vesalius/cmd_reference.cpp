@@ -321,14 +321,19 @@ void runFullBody(const FullBodyOptions& o) {
   }
   const std::map<std::string, fit::SimilarityTransform> digits =
       transfer::placeDigits(model.bodies, placement, correspondence.digits, localMeshes, transfer::boneSegments(rig));
+  // Points of a body's frame (#P by 3) placed as its mesh `name` is: by the body's placement, or by the
+  // digit's own fit.
+  const auto placeAsMesh = [&](const std::string& name, int body, const MatrixX3d& local) {
+    const auto digit = digits.find(name);
+    return digit == digits.end() ? transfer::placeBodyPoints(model.bodies, placement, body, local)
+                                 : digit->second.apply(transfer::restWorldPoints(model.bodies, body, local));
+  };
   std::map<int, std::string> firstTissueOfBody;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const AttachedGeometry& g = model.geometry[m];
     const std::string name = fs::path(g.meshFile).stem().string(), body = model.bodies.joints[g.body].name;
     TriMesh mesh = std::move(meshes[m]);
-    const auto digit = digits.find(name);
-    mesh.V = digit == digits.end() ? transfer::placeBodyPoints(model.bodies, placement, g.body, mesh.V)
-                                   : digit->second.apply(transfer::restWorldPoints(model.bodies, g.body, mesh.V));
+    mesh.V = placeAsMesh(name, g.body, mesh.V);
     ReferenceTissue tissue{name, TissueKind::Bone, boneGroup(body, name), isTrunkBody(body), std::move(mesh)};
     firstTissueOfBody.emplace(g.body, tissue.name);
     anatomy.tissues.push_back(std::move(tissue));
@@ -341,6 +346,19 @@ void runFullBody(const FullBodyOptions& o) {
                                 tissue == firstTissueOfBody.end() ? "" : tissue->second,
                                 paths[m].row(Eigen::Index(p)).transpose()});
     }
+  // The joint centres, which the transfer carries too (seed 000 §8): each non-root body's origin, named
+  // joint/BODY and fixed to the body's first mesh.
+  for (std::size_t b = 0; b < model.bodies.joints.size(); ++b) {
+    if (model.bodies.joints[b].parent < 0) continue;
+    const auto tissue = firstTissueOfBody.find(int(b));
+    const MatrixX3d origin = MatrixX3d::Zero(1, 3);
+    anatomy.points.push_back({"joint/" + model.bodies.joints[b].name,
+                              tissue == firstTissueOfBody.end() ? "" : tissue->second,
+                              (tissue == firstTissueOfBody.end() ? transfer::placeBodyPoints(model.bodies, placement, int(b), origin)
+                                                                 : placeAsMesh(tissue->second, int(b), origin))
+                                  .row(0)
+                                  .transpose()});
+  }
   moveBonesInsideSkin(anatomy, placedJoints(model.bodies, placement), report);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
   report.output("reference", o.out);
@@ -348,7 +366,7 @@ void runFullBody(const FullBodyOptions& o) {
   report.metric("points", anatomy.points.size());
   report.metric("head_slices", frame.headSlices);
   std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices, " << anatomy.tissues.size() << " bone meshes, "
-            << anatomy.points.size() << " muscle path points\n";
+            << anatomy.points.size() << " points (muscle paths and joint centres)\n";
   o.common.finish(report);
 }
 

@@ -22,6 +22,7 @@
 #include <fstream>
 #include <map>
 #include <iostream>
+#include <limits>
 
 namespace vesalius::test {
 namespace {
@@ -279,6 +280,33 @@ int expectPointsStayOnTheirBones(const ReferenceAnatomy& reference, const Refere
   return onBone;
 }
 
+// The joint centres (points named joint/BODY, fixed to the body's bone) carried with their bones: how far
+// each is from the nearest bone of another group (the joint's other side) before and after; returns the
+// widest opening (after − before, mm) and checks that all 21 of Rajagopal's came through.
+double widestJointOpening(const ReferenceAnatomy& reference, const ReferenceAnatomy& out) {
+  const auto otherSide = [](const ReferenceAnatomy& a, const ReferencePoint& joint) {
+    std::string group;
+    for (const ReferenceTissue& t : a.tissues)
+      if (t.name == joint.tissue) group = t.group;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const ReferenceTissue& t : a.tissues)
+      if (t.kind == TissueKind::Bone && t.group != group)
+        nearest = std::min(nearest, std::sqrt(TriangleTree(t.mesh.V, t.mesh.F).closest(joint.position).squaredDistance));
+    return nearest;
+  };
+  int joints = 0;
+  double widest = -std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < std::min(reference.points.size(), out.points.size()); ++p) {
+    if (reference.points[p].name.rfind("joint/", 0) != 0) continue;
+    ++joints;
+    const double before = otherSide(reference, reference.points[p]), after = otherSide(out, out.points[p]);
+    std::cout << reference.points[p].name << ": " << before << " -> " << after << " mm from the other side\n";
+    widest = std::max(widest, after - before);
+  }
+  EXPECT_EQ(joints, 21);
+  return widest;
+}
+
 // Mean distance (mm) of the transferred skin's hand and forearm vertices (those whose closest reference
 // bone is in a hand, or a radius or ulna group) to their true places `truth`. The MakeHuman bodies share
 // the neutral's topology, so reference skin vertex i belongs at the body's vertex i: the transfer never
@@ -318,7 +346,7 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const std::string dir = freshDir("full-body");
   const ReferenceAnatomy reference = fullBodyReference(dir);
   EXPECT_EQ(reference.tissues.size(), 81u);
-  EXPECT_EQ(reference.points.size(), 288u);
+  EXPECT_EQ(reference.points.size(), 288u + 21u);  // muscle path points, joint centres
   // MakeHuman's uv come with the skin, so the fat editor can write its texture (seed 000 §5-6): 0.4 of the
   // 50 mm maximum over the pelvis, nothing where no bone was given an amount.
   EXPECT_EQ(reference.skin.FUV.rows(), reference.skin.F.rows());
@@ -335,6 +363,9 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   // R1 for the 22 long bones (limbs 12, metacarpals II-V 8, ring fingers' proximal phalanges 2), R2.
   EXPECT_EQ(expectStraightAndSymmetric(m["bone_groups"]), 22);
   EXPECT_GT(expectPointsStayOnTheirBones(reference, io::readReferenceAnatomy(dir + "/out")), 20);
+  // The joints stay together: where two bone groups' maps differ, a joint opens (measured at most 4.8 mm,
+  // the elbow's radius from the humerus; the knee's patella closes by 6.6 mm).
+  EXPECT_LT(widestJointOpening(reference, io::readReferenceAnatomy(dir + "/out")), 7.0);
   // Measured (session 16, the articulated stage): hands 3.2 mm off their true place, forearms 10.0 mm, the
   // rest of the skin 11.7 mm (ICP and shape matching alone: 60 mm and 35 mm).
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(thin));
@@ -371,6 +402,7 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
       fullBodyTransfer(dir, std::string(VESALIUS_TESTDATA) + "/body/shapes/" + muscular, "makehuman");
   EXPECT_EQ(expectStraightAndSymmetric(m["bone_groups"]), 22);
   EXPECT_GT(expectPointsStayOnTheirBones(reference, io::readReferenceAnatomy(dir + "/out")), 20);
+  EXPECT_LT(widestJointOpening(reference, io::readReferenceAnatomy(dir + "/out")), 7.0);  // measured 5.4 mm
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(muscular));
   EXPECT_LT(hands, 4.0);
   EXPECT_LT(forearms, 13.0);
