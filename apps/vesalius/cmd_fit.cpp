@@ -6,6 +6,8 @@
 // shows the fitted surface's contour over the scan's slices (Fig. 18) beside the error histogram.
 #include "cmd_fit.h"
 
+#include "landmark_pairs.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/core/markers.h"
 #include "vesalius/core/mesh_measures.h"
@@ -180,42 +182,13 @@ void readIcpMarkers(const std::string& path, FitInputs& in) {
   if (in.points.icp.rows() == 0) throw BadInput(path, "holds no defined ICP markers");
 }
 
-std::vector<const Marker*> markersOfKind(const MarkerSet& set, MarkerKind kind) {
-  std::vector<const Marker*> found;
-  for (const Marker& m : set.markers)
-    if (m.kind == kind) found.push_back(&m);
-  return found;
-}
-
-std::map<std::string, const Marker*> landmarksByLabel(const MarkerSet& set, const std::string& path) {
-  std::map<std::string, const Marker*> byLabel;
-  for (const Marker* m : markersOfKind(set, MarkerKind::Landmark))
-    if (!byLabel.emplace(m->label, m).second)
-      throw BadInput(path, "landmark label '" + m->label + "' is used twice, so it cannot be paired");
-  return byLabel;
-}
-
 // Landmarks paired by label; a pair with an undefined point is skipped, a label without a partner is refused.
 void pairLandmarksByLabel(const std::string& templatePath, const std::string& scanPath, FitInputs& in) {
-  const MarkerSet templ = io::readMarkers(templatePath), scan = io::readMarkers(scanPath);
-  const auto templateByLabel = landmarksByLabel(templ, templatePath);
-  const auto scanByLabel = landmarksByLabel(scan, scanPath);
-  for (const auto& [label, marker] : scanByLabel)
-    if (!templateByLabel.count(label))
-      throw BadInput(scanPath, "landmark '" + label + "' has no partner in " + templatePath);
-  for (const Marker* t : markersOfKind(templ, MarkerKind::Landmark)) {
-    const auto partner = scanByLabel.find(t->label);
-    if (partner == scanByLabel.end())
-      throw BadInput(templatePath, "landmark '" + t->label + "' has no partner in " + scanPath);
-    const Marker* s = partner->second;
-    if (t->status != MarkerStatus::Defined || s->status != MarkerStatus::Defined) {
-      ++in.skipped;
-      continue;
-    }
-    append(in.points.templateLandmarks, t->position);
-    append(in.points.scanLandmarks, s->position);
-    in.landmarkLabels.push_back(t->label);
-  }
+  const LandmarkPairs pairs = pairLandmarks(templatePath, scanPath);
+  in.points.templateLandmarks = pairs.first;
+  in.points.scanLandmarks = pairs.second;
+  in.landmarkLabels = pairs.labels;
+  in.skipped += pairs.skipped;
 }
 
 // Markers of `kind` that carry their template point (core/markers.h templatePosition): landmarks given

@@ -5,6 +5,7 @@
 #include "body_distance.h"
 #include "bone_fat_amounts.h"
 #include "common.h"
+#include "landmark_pairs.h"
 #include "thickness_input.h"
 
 #include "vesalius/core/error.h"
@@ -35,7 +36,7 @@ namespace {
 
 struct TransferOptions {
   std::string reference, targetSkin, out, space = "lps", png, fat = "0", fatAmounts, laplaceSolver = "mg",
-              registration = "articulated";
+              registration = "articulated", referenceLandmarks, targetLandmarks;
   double voxelSize = 3;
   int registrationIterations = transfer::SkinRegistrationOptions{}.iterations;
   CommonOptions common;
@@ -48,14 +49,32 @@ TriMesh readTarget(const TransferOptions& o) {
   return skin;
 }
 
+// --reference-landmarks and --target-landmarks paired by label (§4's optional manual initialisation), each
+// reference point taken as the reference skin vertex nearest to it.
+std::vector<transfer::SkinLandmark> readSkinLandmarks(const TransferOptions& o, const TriMesh& skin) {
+  if (o.referenceLandmarks.empty()) return {};
+  const LandmarkPairs pairs = pairLandmarks(o.referenceLandmarks, o.targetLandmarks);
+  if (pairs.labels.empty()) throw BadInput(o.referenceLandmarks, "holds no defined landmark with a partner");
+  std::vector<transfer::SkinLandmark> landmarks;
+  for (Eigen::Index p = 0; p < pairs.first.rows(); ++p) {
+    Eigen::Index vertex = 0;
+    (skin.V.rowwise() - pairs.first.row(p)).rowwise().squaredNorm().minCoeff(&vertex);
+    landmarks.push_back({int(vertex), pairs.second.row(p).transpose()});
+  }
+  return landmarks;
+}
+
 // The reference skin onto a target skin: §4's ICP with shape matching, after the articulated stage unless
-// --registration plain (articulated_registration.h).
+// --registration plain (articulated_registration.h), with the landmarks if any.
 transfer::SkinRegistration registerReferenceSkin(const ReferenceAnatomy& reference, const transfer::SkinParts& parts,
-                                                 const MatrixX3d& Vt, const MatrixX3i& Ft, const TransferOptions& o) {
+                                                 const MatrixX3d& Vt, const MatrixX3i& Ft, const TransferOptions& o,
+                                                 const std::vector<transfer::SkinLandmark>& landmarks = {}) {
   transfer::ArticulatedRegistrationOptions options;
   options.registration.iterations = o.registrationIterations;
-  if (o.registration == "plain") return transfer::registerSkin(reference.skin.V, reference.skin.F, Vt, Ft, options.registration);
-  return transfer::registerSkinArticulated(reference.skin.V, reference.skin.F, parts, Vt, Ft, options).registration;
+  if (o.registration == "plain")
+    return transfer::registerSkin(reference.skin.V, reference.skin.F, Vt, Ft, options.registration, landmarks);
+  return transfer::registerSkinArticulated(reference.skin.V, reference.skin.F, parts, Vt, Ft, options, landmarks)
+      .registration;
 }
 
 // No fat where the scan's field of view cut the body: those vertices are not skin.
@@ -263,11 +282,18 @@ void runTransfer(const TransferOptions& o) {
   start = std::chrono::steady_clock::now();
   const transfer::SkinParts parts = transfer::skinPartsFromBones(reference);
   report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
-  const transfer::SkinRegistration registered = registerReferenceSkin(reference, parts, target.V, target.F, o);
+  const std::vector<transfer::SkinLandmark> landmarks = readSkinLandmarks(o, reference.skin);
+  const transfer::SkinRegistration registered = registerReferenceSkin(reference, parts, target.V, target.F, o, landmarks);
   endStage("skin registration");
   progress.end();
   report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
   report.metric("registration_max_distance_mm", registered.finalMaxDistance);
+  if (!landmarks.empty()) {
+    double sum = 0;
+    for (const transfer::SkinLandmark& l : landmarks) sum += (registered.V.row(l.sourceVertex).transpose() - l.target).norm();
+    report.metric("landmarks", long(landmarks.size()));
+    report.metric("landmark_mean_error_mm", sum / double(landmarks.size()));
+  }
 
   TriMesh eroded = reference.skin;
   eroded.V = registered.V;
@@ -387,6 +413,14 @@ void addTransferCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
       ->capture_default_str();
+  CLI::Option* referenceLandmarks =
+      cmd->add_option("--reference-landmarks", o->referenceLandmarks,
+                      "Landmarks on the reference skin (markups, LPS mm), paired by label with --target-landmarks: "
+                      "they start the skin registration where the bodies are far apart or turned (seed 000 §4)");
+  CLI::Option* targetLandmarks = cmd->add_option(
+      "--target-landmarks", o->targetLandmarks, "Their partners on the target skin (markups, LPS mm, as the target is after --space)");
+  referenceLandmarks->needs(targetLandmarks);
+  targetLandmarks->needs(referenceLandmarks);
   cmd->add_option("--registration", o->registration,
                   "Skin registration: articulated (the reference skin cut into parts by its bones, limbs turned about "
                   "their joints before ICP with shape matching) or plain (ICP with shape matching alone, seed 000 §4)")

@@ -242,10 +242,11 @@ SkinParts skinPartsFromBones(const ReferenceAnatomy& reference) {
 
 ArticulatedRegistration registerSkinArticulated(const MatrixX3d& Vs, const MatrixX3i& Fs, const SkinParts& parts,
                                                 const MatrixX3d& Vt, const MatrixX3i& Ft,
-                                                const ArticulatedRegistrationOptions& options) {
+                                                const ArticulatedRegistrationOptions& options,
+                                                const std::vector<SkinLandmark>& landmarks) {
   checkOptions(options);
   checkParts(parts, Vs.rows());
-  const fit::SimilarityTransform alignment = alignSkin(Vs, Fs, Vt, Ft, options.registration);
+  const fit::SimilarityTransform alignment = alignSkin(Vs, Fs, Vt, Ft, options.registration, landmarks);
   SkinParts aligned = parts;
   for (Eigen::Vector3d& joint : aligned.joint) joint = alignment.apply(joint);
   const MatrixX3d Q = alignment.apply(Vs);
@@ -255,7 +256,7 @@ ArticulatedRegistration registerSkinArticulated(const MatrixX3d& Vs, const Matri
   result.articulated = blendParts(Q, Fs, aligned, result.partTransforms, options.blendIterations);
   SkinRegistrationOptions deform = options.registration;
   deform.align = false;
-  result.registration = registerSkin(result.articulated, Fs, Vt, Ft, deform);
+  result.registration = registerSkin(result.articulated, Fs, Vt, Ft, deform, landmarks);
   result.registration.alignment = alignment;
   return result;
 }

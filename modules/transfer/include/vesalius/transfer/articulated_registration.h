@@ -73,9 +73,12 @@ struct ArticulatedRegistration {
 };
 
 // Vs, Fs: the reference skin (parts.partOfVertex has a row per vertex); Vt, Ft: the target skin; mm, LPS.
-// Throws as registerSkin does, and BadInput when parts does not fit Vs; UsageError on impossible options.
+// landmarks: manual correspondences, used by the alignment (step 1) and the deformation (step 5) as
+// registerSkin uses them. Throws as registerSkin does, and BadInput when parts does not fit Vs; UsageError
+// on impossible options.
 ArticulatedRegistration registerSkinArticulated(const MatrixX3d& Vs, const MatrixX3i& Fs, const SkinParts& parts,
                                                 const MatrixX3d& Vt, const MatrixX3i& Ft,
-                                                const ArticulatedRegistrationOptions& options = {});
+                                                const ArticulatedRegistrationOptions& options = {},
+                                                const std::vector<SkinLandmark>& landmarks = {});
 
 }  // namespace vesalius::transfer
