@@ -350,14 +350,10 @@ void runFullBody(const FullBodyOptions& o) {
   // joint/BODY and fixed to the body's first mesh.
   for (std::size_t b = 0; b < model.bodies.joints.size(); ++b) {
     if (model.bodies.joints[b].parent < 0) continue;
-    const auto tissue = firstTissueOfBody.find(int(b));
-    const MatrixX3d origin = MatrixX3d::Zero(1, 3);
-    anatomy.points.push_back({"joint/" + model.bodies.joints[b].name,
-                              tissue == firstTissueOfBody.end() ? "" : tissue->second,
-                              (tissue == firstTissueOfBody.end() ? transfer::placeBodyPoints(model.bodies, placement, int(b), origin)
-                                                                 : placeAsMesh(tissue->second, int(b), origin))
-                                  .row(0)
-                                  .transpose()});
+    const auto first = firstTissueOfBody.find(int(b));
+    const std::string tissue = first == firstTissueOfBody.end() ? "" : first->second;
+    anatomy.points.push_back({"joint/" + model.bodies.joints[b].name, tissue,
+                              placeAsMesh(tissue, int(b), MatrixX3d::Zero(1, 3)).row(0).transpose()});
   }
   moveBonesInsideSkin(anatomy, placedJoints(model.bodies, placement), report);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
