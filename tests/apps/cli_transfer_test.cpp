@@ -195,6 +195,12 @@ TEST(CliTransfer, LandmarksStartTheRegistrationOnATurnedBody) {
   TriMesh target = a.skin;
   target.V = turned(a.skin.V);
   io::writeTriMesh(dir + "/turned.obj", target);
+  const auto landmark = [](const std::string& label, const Eigen::Vector3d& position) {
+    Marker m;  // a defined landmark
+    m.label = label;
+    m.position = position;
+    return m;
+  };
   MarkerSet onReference, onTarget;
   for (int axis = 0; axis < 3; ++axis)
     for (const bool largest : {false, true}) {
@@ -202,8 +208,8 @@ TEST(CliTransfer, LandmarksStartTheRegistrationOnATurnedBody) {
       if (largest) a.skin.V.col(axis).maxCoeff(&v);
       else a.skin.V.col(axis).minCoeff(&v);
       const std::string label = "extreme-" + std::to_string(axis) + (largest ? "+" : "-");
-      onReference.markers.push_back({label, MarkerKind::Landmark, MarkerStatus::Defined, a.skin.V.row(v).transpose()});
-      onTarget.markers.push_back({label, MarkerKind::Landmark, MarkerStatus::Defined, target.V.row(v).transpose()});
+      onReference.markers.push_back(landmark(label, a.skin.V.row(v).transpose()));
+      onTarget.markers.push_back(landmark(label, target.V.row(v).transpose()));
     }
   io::writeMarkers(dir + "/reference.mrk.json", onReference);
   io::writeMarkers(dir + "/target.mrk.json", onTarget);
@@ -226,7 +232,7 @@ TEST(CliTransfer, LandmarksStartTheRegistrationOnATurnedBody) {
   // A label without a partner, or landmarks on one side only, are refused in one line, and nothing is
   // written.
   MarkerSet extra = onReference;
-  extra.markers.push_back({"lonely", MarkerKind::Landmark, MarkerStatus::Defined, a.skin.V.row(0).transpose()});
+  extra.markers.push_back(landmark("lonely", a.skin.V.row(0).transpose()));
   io::writeMarkers(dir + "/extra.mrk.json", extra);
   const std::vector<std::string> base{"transfer", "--reference", reference, "--target-skin", dir + "/turned.obj",
                                       "--out", dir + "/refused", "--progress", "none"};
