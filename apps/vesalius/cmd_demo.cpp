@@ -33,7 +33,8 @@ struct DemoOptions {
   std::string organ = "liver";
   std::string templ = kData + "/liver/liver.obj";
   std::string smoothTemplate = kData + "/liver/liver-smooth.obj";
-  int markers = 150;
+  int markers = 300;
+  int refits = 3;
   long targetTets = 5000;
   std::string out = "demo-output";
   CommonOptions common;
@@ -105,6 +106,7 @@ FitOutcome fitOrgan(const DemoOptions& o) {
   fit.icp = sample.out;
   fit.unattached = true;
   fit.targetTets = o.targetTets;
+  fit.refit.refits = o.refits;
   fit.out = in(o, o.organ + "_fitted.vtu");
   fit.surfaceOut = in(o, o.organ + "_fitted.vtp");
   if (!o.smoothTemplate.empty()) {
@@ -195,10 +197,13 @@ void addDemoCommand(CLI::App& app) {
   cmd->add_option("--target-tets", o->targetTets, "About this many tets for the template")
       ->check(CLI::Range(100L, 1000000L))
       ->capture_default_str();
+  cmd->add_option("--refits", o->refits, "Refits of the fit from the fitted shape (vesalius fit --refits)")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   addCommonOptions(*cmd, o->common);
   cmd->footer("Example:\n  vesalius demo --out demo-output --force\n"
-              "Takes about 3 minutes on 2 cores: the segmentation, then the liver fit (vesalius fit).");
+              "Takes about 5 minutes on 2 cores: the segmentation, then the liver fit (vesalius fit).");
   cmd->callback([o] { runDemo(*o); });
 }
 

@@ -53,6 +53,9 @@ namespace fs = std::filesystem;
 
 constexpr double kIcpBinMm = 0.25;       // Fig. 16 histogram bins
 constexpr double kDihedralBinDeg = 5.0;  // Fig. 17 histogram bins
+// A refit's surface without --template-faces: the CT liver's fitted boundary (2,802 triangles) at 1,500
+// gives about 31k tets and ends at 0.33 mm; at 800, 17k tets, the refit stalls at 1.7 mm (plastic-fit.md).
+constexpr int kRefitFaces = 1500;
 
 // ---- Options ----
 
@@ -79,6 +82,8 @@ void checkOptions(const FitCommandOptions& o) {
     throw UsageError("fit: --template-landmarks needs --scan-landmarks");
   if (o.embed.empty() != o.embedOut.empty()) throw UsageError("fit: --embed and --embed-out go together");
   if (o.overlay.empty() != o.png.empty()) throw UsageError("fit: --overlay and --png go together");
+  if (o.refit.refits > 0 && o.method != "plastic")
+    throw UsageError("fit: --refits refits plastic strains; the elastic baseline has none");
   refuseExisting(o, {o.out, o.surfaceOut, o.embedOut, o.png, o.common.report});
 }
 
@@ -135,24 +140,6 @@ Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   options.targetTets = o.targetTets;
   t.tets = meshing::tetrahedralize(meshing::decimateSurface(*t.surface, o.templateFaces), options, o.templ);
   return t;
-}
-
-// The boundary of a tet mesh as a surface of its own: only the vertices its triangles use.
-TriMesh boundarySurface(const MatrixX3d& V, const MatrixX4i& T) {
-  const MatrixX3i F = tetBoundary(T);
-  Eigen::VectorXi newIndex = Eigen::VectorXi::Constant(V.rows(), -1);
-  TriMesh surface;
-  surface.V.resize(V.rows(), 3);
-  int used = 0;
-  for (Eigen::Index i = 0; i < F.size(); ++i) {
-    const int v = F.data()[i];
-    if (newIndex[v] >= 0) continue;
-    surface.V.row(used) = V.row(v);
-    newIndex[v] = used++;
-  }
-  surface.V.conservativeResize(used, 3);
-  surface.F = F.unaryExpr([&](int v) { return newIndex[v]; });
-  return surface;
 }
 
 // ---- Markers ----
@@ -245,7 +232,7 @@ Start place(const FitCommandOptions& o, const TetMesh& templ, const fit::FitMark
   Start start;
   start.from = "none";
   if (o.init == "similarity") {
-    start.placement = fit::placeTemplate(boundarySurface(templ.V, templ.T), points.templateLandmarks,
+    start.placement = fit::placeTemplate(tetBoundarySurface(templ.V, templ.T), points.templateLandmarks,
                                          points.scanLandmarks, points.icp);
     start.from = points.templateLandmarks.rows() >= 3 ? "landmarks" : "icp markers";
   }
@@ -460,6 +447,8 @@ void reportInputs(const FitCommandOptions& o, io::Report& report) {
   report.parameter("unattached", o.unattached);
   report.parameter("target_tets", o.targetTets);
   report.parameter("template_faces", o.templateFaces);
+  report.parameter("refits", o.refit.refits);
+  report.parameter("refit_icp_iterations", o.refit.icpIterations);
   report.parameter("icp_iterations", o.solver.icpIterations);
   report.parameter("max_icp_error_mm", o.solver.maxIcpError);
   report.parameter("min_icp_gain", o.solver.minIcpGain);
@@ -474,9 +463,68 @@ fit::FitResult solve(const FitCommandOptions& o, const TetMesh& templ, const Sta
   return fit::fitPlasticStrains(templ, start.x0, start.s0, in.points, o.solver, &progress);
 }
 
+// A refit's rest mesh (fit/refit.h): the fitted boundary decimated to --template-faces, or to kRefitFaces
+// without it (TetGen keeps every triangle, and the boundary of a fine template is fine), closed by its
+// winding number instead where it or its decimation crosses itself (a fitted organ can touch itself in a
+// cleft it was pulled into), then tetrahedralized.
+TetMesh refitMesh(const FitCommandOptions& o, const TriMesh& fittedBoundary) {
+  const int faces = o.templateFaces > 0 ? o.templateFaces : kRefitFaces;
+  TriMesh surface = meshing::decimateSurface(fittedBoundary, faces);
+  if (!selfIntersections(surface.V, surface.F).empty()) {
+    meshing::ClosedSurfaceOptions closing;
+    closing.targetFaces = faces;
+    surface = meshing::closedSurface(fittedBoundary, closing);
+  }
+  meshing::TetrahedralizeOptions options;
+  options.targetTets = o.targetTets;
+  return meshing::tetrahedralize(surface, options, o.out + " (a refit's rest shape)");
+}
+
+// The fit, then its refits (plastic only): the rounds kept, the template's first.
+std::vector<fit::FitRound> fitRounds(const FitCommandOptions& o, const TetMesh& templ, const Start& start,
+                                     const FitInputs& in, Progress& progress) {
+  fit::FitRound first{templ, in.points, solve(o, templ, start, in, progress)};
+  if (o.method != "plastic" || o.refit.refits == 0) return {std::move(first)};
+  return fit::refit(std::move(first), o.solver, o.refit,
+                    [&](const TriMesh& boundary) { return refitMesh(o, boundary); }, &progress);
+}
+
+// A surface in template space carried through every round in turn (§4.3).
+TriMesh carried(TriMesh surface, const std::vector<fit::FitRound>& rounds) {
+  for (const fit::FitRound& round : rounds)
+    surface = fit::embedSurface(surface, round.rest.V, round.rest.T, round.result.V);
+  return surface;
+}
+
+// A surface template keeps its own triangles (and uv, attributes), carried by the fit (§4.3). After
+// refits the shape reached is the last round's boundary: the template's triangles, carried through tets
+// the rounds crushed, tangle (the CT liver's smooth surface, 300 markers: 7 crossing triangle pairs after
+// the first round, 94 after three refits), and coarse ones cannot follow the shape (plastic-fit.md, "Refits").
+TriMesh fittedSurface(const Template& t, const std::vector<fit::FitRound>& rounds) {
+  if (rounds.size() > 1) return tetBoundarySurface(rounds.back().result.V, rounds.back().rest.T);
+  return carried(t.surface ? *t.surface : tetBoundarySurface(t.tets.V, t.tets.T), rounds);
+}
+
+nlohmann::json roundRows(const std::vector<fit::FitRound>& rounds) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const fit::FitRound& round : rounds) {
+    const MatrixX3d stretches = principalStretches(round.result.s);
+    rows.push_back({{"tets", round.rest.T.rows()},
+                    {"iterations", round.result.history.size()},
+                    {"icp_error_mm", meanAndMax(round.result.icpErrors)},
+                    {"min_dihedral_deg", tetQuality(round.result.V, round.rest.T).minDihedral.minCoeff()},
+                    {"plastic_stretches",
+                     quantiles(Eigen::Map<const Eigen::VectorXd>(stretches.data(), stretches.size()))}});
+  }
+  return rows;
+}
+
+// rounds: the fit's rounds (fitRounds); the numbers "after" are the last round's, what the outputs hold.
 void reportFit(const TetMesh& templ, const Start& start, const FitInputs& in, const Eigen::VectorXd& icpBefore,
-               const fit::FitResult& r, const MatrixX3d& stretches, io::Report& report) {
+               const std::vector<fit::FitRound>& rounds, io::Report& report) {
   const fit::FitMarkers& p = in.points;
+  const fit::FitRound& last = rounds.back();
+  const fit::FitResult& r = last.result;
   const fit::SimilarityTransform& t = start.placement.transform;
   report.metric("markers", {{"icp", p.icp.rows()},
                             {"landmark_pairs", p.scanLandmarks.rows()},
@@ -490,38 +538,57 @@ void reportFit(const TetMesh& templ, const Start& start, const FitInputs& in, co
   report.metric("attached", r.attached);
   report.metric("mesh", {{"vertices", templ.V.rows()},
                          {"tets", templ.T.rows()},
-                         {"inverted_after", (tetVolumes(r.V, templ.T).array() <= 0).count()}});
+                         {"fitted_vertices", last.rest.V.rows()},
+                         {"fitted_tets", last.rest.T.rows()},
+                         {"inverted_after", (tetVolumes(r.V, last.rest.T).array() <= 0).count()}});
   report.metric("icp_error_mm", {{"before", meanAndMax(icpBefore)}, {"after", meanAndMax(r.icpErrors)}});
   report.metric("icp_errors", perMarker(in.icpLabels, icpBefore, r.icpErrors));
   report.metric("icp_error_histogram", {{"bin_mm", kIcpBinMm}, {"counts", histogram(r.icpErrors, kIcpBinMm)}});
   const Eigen::VectorXd landmarksBefore = materialPointErrors(templ, p.templateLandmarks, p.scanLandmarks, start.x0);
   report.metric("landmark_errors", perMarker(in.landmarkLabels, landmarksBefore, r.landmarkErrors));
-  report.metric("attachment_error_mm",
-                meanAndMax(materialPointErrors(templ, p.attachmentMaterial, p.attachmentTargets, r.V)));
-  report.metric("iterations", iterationRows(r.history));
-  nlohmann::json ends = nlohmann::json::array();
-  for (const fit::FitStageEnd& e : r.stageEnds)
-    ends.push_back({{"stage", e.stage}, {"iterations", e.iterations}, {"stopped_by", e.reason}});
+  report.metric("attachment_error_mm", meanAndMax(materialPointErrors(last.rest, last.markers.attachmentMaterial,
+                                                                      p.attachmentTargets, r.V)));
+  nlohmann::json iterations = nlohmann::json::array(), ends = nlohmann::json::array();
+  for (std::size_t k = 0; k < rounds.size(); ++k) {
+    for (nlohmann::json row : iterationRows(rounds[k].result.history)) {
+      row["round"] = k;
+      iterations.push_back(row);
+    }
+    for (const fit::FitStageEnd& e : rounds[k].result.stageEnds)
+      ends.push_back({{"round", k}, {"stage", e.stage}, {"iterations", e.iterations}, {"stopped_by", e.reason}});
+  }
+  report.metric("iterations", iterations);
   report.metric("stages", ends);
+  report.metric("rounds", roundRows(rounds));
   report.metric("min_dihedral",
-                {{"before", dihedralMetrics(start.x0, templ.T)}, {"after", dihedralMetrics(r.V, templ.T)}});
-  const double volume = tetVolumes(templ.V, templ.T).sum(), fitted = tetVolumes(r.V, templ.T).sum();
+                {{"before", dihedralMetrics(start.x0, templ.T)}, {"after", dihedralMetrics(r.V, last.rest.T)}});
+  const double volume = tetVolumes(templ.V, templ.T).sum(), fitted = tetVolumes(r.V, last.rest.T).sum();
   report.metric("volume_mm3", {{"template", volume},
                                {"placed", tetVolumes(start.x0, templ.T).sum()},
                                {"fitted", fitted},
                                {"fitted_over_template", fitted / volume}});
+  // Fp of the first round, against the template (a refit's is against the shape before it: "rounds").
+  const MatrixX3d stretches = principalStretches(rounds.front().result.s);
   report.metric("plastic_stretches", quantiles(Eigen::Map<const Eigen::VectorXd>(stretches.data(), stretches.size())));
 }
 
 void printSummary(const FitCommandOptions& o, const TetMesh& templ, const Start& start, const FitInputs& in,
-                  const Eigen::VectorXd& before, const fit::FitResult& r, double seconds) {
+                  const Eigen::VectorXd& before, const std::vector<fit::FitRound>& rounds, double seconds) {
   const fit::FitMarkers& p = in.points;
+  const fit::FitResult& r = rounds.back().result;
+  long iterations = 0;
+  for (const fit::FitRound& round : rounds) iterations += long(round.result.history.size());
   std::cout << o.out << ": " << templ.V.rows() << " vertices, " << templ.T.rows() << " tets fitted (" << o.method
             << ", " << (r.attached ? "attached" : "un-attached") << ") to " << p.icp.rows() << " ICP markers, "
             << p.scanLandmarks.rows() << " landmark pairs, " << p.attachmentMaterial.rows() << " attachments\n"
             << "placement from " << start.from << ", scale " << start.placement.transform.scale << "; "
-            << r.history.size() << " iterations in " << std::lround(seconds * 10) / 10.0 << " s\n"
-            << "ICP error before: mean " << mm(before.mean()) << ", max " << mm(before.maxCoeff()) << "\n"
+            << iterations << " iterations in " << std::lround(seconds * 10) / 10.0 << " s\n";
+  if (rounds.size() > 1) {
+    std::cout << "refitted " << rounds.size() - 1 << " time(s) from the fitted shape; mean ICP error by round:";
+    for (const fit::FitRound& round : rounds) std::cout << ' ' << mm(round.result.icpErrors.mean());
+    std::cout << "; the last has " << rounds.back().rest.T.rows() << " tets\n";
+  }
+  std::cout << "ICP error before: mean " << mm(before.mean()) << ", max " << mm(before.maxCoeff()) << "\n"
             << "ICP error after:  mean " << mm(r.icpErrors.mean()) << ", max " << mm(r.icpErrors.maxCoeff()) << "\n";
   if (!r.stageEnds.empty())
     std::cout << "last stage (" << r.stageEnds.back().stage << ") ended by " << r.stageEnds.back().reason << " after "
@@ -530,17 +597,18 @@ void printSummary(const FitCommandOptions& o, const TetMesh& templ, const Start&
     std::cout << in.skipped << " marker(s) skipped: not placed yet, or not ICP markers in the --icp file\n";
 }
 
-void writeOutputs(const FitCommandOptions& o, const Template& t, const fit::FitResult& r, const MatrixX3d& stretches,
+void writeOutputs(const FitCommandOptions& o, const std::vector<fit::FitRound>& rounds,
                   const TriMesh& fittedSurface, io::Report& report) {
   const io::MeshWriteOptions write{o.common.writeOptions()};
-  io::writeTetMesh(o.out, fittedTetMesh(t.tets, r, stretches), write);
+  const fit::FitRound& last = rounds.back();
+  io::writeTetMesh(o.out, fittedTetMesh(last.rest, last.result, principalStretches(last.result.s)), write);
   report.output("fitted", o.out);
   if (!o.surfaceOut.empty()) {
     io::writeTriMesh(o.surfaceOut, fittedSurface, write);
     report.output("surface", o.surfaceOut);
   }
   if (!o.embed.empty()) {
-    io::writeTriMesh(o.embedOut, fit::embedSurface(io::readTriMesh(o.embed), t.tets.V, t.tets.T, r.V), write);
+    io::writeTriMesh(o.embedOut, carried(io::readTriMesh(o.embed), rounds), write);
     report.output("embedded", o.embedOut);
   }
 }
@@ -566,31 +634,29 @@ FitOutcome runFit(const FitCommandOptions& o) {
     start = place(o, t.tets, in.points);
     if (!o.attachTo.empty()) attachToBone(o, t.tets, start, in);
   }
-  fit::FitResult result;
+  std::vector<fit::FitRound> rounds;
   {
     auto timer = report.time("fit");
-    result = solve(o, t.tets, start, in, progress);
+    rounds = fitRounds(o, t.tets, start, in, progress);
   }
-  const MatrixX3d stretches = principalStretches(result.s);
-  // A surface template keeps its own triangles (and uv, attributes), carried by the fit (§4.3).
-  const TriMesh fittedSurface =
-      t.surface ? fit::embedSurface(*t.surface, t.tets.V, t.tets.T, result.V) : boundarySurface(result.V, t.tets.T);
+  const fit::FitResult& result = rounds.back().result;
+  const TriMesh surface = fittedSurface(t, rounds);
   {
     auto timer = report.time("write meshes");
-    writeOutputs(o, t, result, stretches, fittedSurface, report);
+    writeOutputs(o, rounds, surface, report);
   }
   if (!o.png.empty()) {
     auto timer = report.time("picture");
-    writePicture(o, fittedSurface, in.points, result.icpErrors);
+    writePicture(o, surface, in.points, result.icpErrors);
     report.output("png", o.png);
   }
   const Eigen::VectorXd icpBefore =
       fit::SurfaceProjection(t.tets.T).distances(PlasticFem::flatten(start.x0), in.points.icp);
-  reportFit(t.tets, start, in, icpBefore, result, stretches, report);
+  reportFit(t.tets, start, in, icpBefore, rounds, report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  printSummary(o, t.tets, start, in, icpBefore, result, seconds);
+  printSummary(o, t.tets, start, in, icpBefore, rounds, seconds);
   o.common.finish(report);
-  return {t.tets.T.rows(), icpBefore, result.icpErrors, seconds};
+  return {rounds.back().rest.T.rows(), icpBefore, result.icpErrors, seconds};
 }
 
 void addFitCommand(CLI::App& app) {
@@ -670,10 +736,23 @@ void addFitCommand(CLI::App& app) {
                   "carried to --surface-out. 0 keeps them all")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
+  cmd->add_option("--refits", o->refit.refits,
+                  "Fit again up to this many times, each from the fitted shape tetrahedralized afresh (at "
+                  "--template-faces, or 1500 triangles), while a marker is farther than --max-icp-error: for a "
+                  "template far from the organ, whose first fit crushes tets and stalls (the SOFA liver on a CT: "
+                  "2.2 mm, then 0.04 mm). --out and --surface-out then hold the last refit's tets and their "
+                  "boundary; --embed-out is carried through every round")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  cmd->add_option("--refit-iterations", o->refit.icpIterations, "Most ICP iterations of each refit")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   addCommonOptions(*cmd, o->common);
   cmd->footer(
       "Examples:\n  vesalius fit --template liver.vtu --icp liver_icp.mrk.json --unattached --out liver_fitted.vtu "
       "--overlay ct.nii.gz --png liver_fit.png --report liver_fit.json\n"
+      "  vesalius fit --template liver.obj --icp liver_icp.mrk.json --unattached --refits 3 --out liver_fitted.vtu "
+      "--surface-out liver_fitted.vtp\n"
       "  vesalius fit --template muscle.stl --icp icp.mrk.json --template-landmarks tl.mrk.json --scan-landmarks "
       "sl.mrk.json --attach-to insertion.vtp --attach-radius 5 --out muscle.vtu --surface-out muscle.vtp\n"
       "Landmarks pair by label; a label without a partner is refused (exit 3), a pair with an undefined point "

@@ -4,6 +4,7 @@
 #include "common.h"
 
 #include "vesalius/fit/plastic_fit.h"
+#include "vesalius/fit/refit.h"
 
 #include <Eigen/Core>
 
@@ -21,11 +22,12 @@ struct FitCommandOptions {
   int templateFaces = 0;  // decimate a surface template to this many triangles first; 0 keeps them all
   double window = 400, level = 40;
   fit::FitOptions solver;
+  fit::RefitOptions refit;  // refits: 0 is seed 002's fit alone
   CommonOptions common;
 };
 
 struct FitOutcome {
-  long tets = 0;
+  long tets = 0;  // of the last round's mesh (the template's unless refitted)
   Eigen::VectorXd icpBefore, icpAfter;  // #icp marker distances to the surface, mm
   double seconds = 0;
 };

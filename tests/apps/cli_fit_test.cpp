@@ -442,6 +442,11 @@ TEST_F(CliFit, HowTheOrganIsHeldMustBeSaid) {
   expectOneLine(runVesalius(args), 2, "fit: say how the organ is held", "--unattached");
 }
 
+TEST_F(CliFit, RefitsOfTheElasticBaselineAreRefused) {
+  std::vector<std::string> args = fitArgs(fresh("elastic-refit.vtu"), {"--method", "elastic", "--refits", "2"});
+  expectOneLine(runVesalius(args), 2, "fit: --refits refits plastic strains", "elastic");
+}
+
 TEST_F(CliFit, HelpHasAnExample) {
   const CommandResult r = runVesalius({"fit", "--help"});
   EXPECT_EQ(r.exitCode, 0);

@@ -177,9 +177,14 @@ void expectFittedLiver(const std::string& out, const nlohmann::json& report) {
                            "liver_fit.png", "liver_fit.json"})
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
   const nlohmann::json& fit = report["metrics"]["fit"];
-  EXPECT_EQ(fit["markers"].get<long>(), 150);
-  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 2.5);  // measured 2.17 mm (session 13), from 6.73 mm
-  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 0.4 * fit["mean_error_before_mm"].get<double>());
+  EXPECT_EQ(fit["markers"].get<long>(), 300);
+  // Seed 002 reaches 0.06-0.39 mm; the issue asks 0.5. Measured 0.10 mm from 6.64 mm after three refits
+  // (2.32 mm after the first fit, which stalls on crushed tets).
+  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 0.5);
+  std::ifstream fitReport(out + "/liver_fit.json");
+  const nlohmann::json rounds = nlohmann::json::parse(fitReport)["metrics"]["rounds"];
+  ASSERT_GE(rounds.size(), 2u);  // the fit, then refits (measured 3)
+  EXPECT_GT(rounds[0]["icp_error_mm"]["mean"].get<double>(), 1.0);  // the first fit alone stalls (2.32 mm)
 
   const LabelMap organs = io::readLabelMap(kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz",
                                            kData + "/ct-abdomen-pelvis/labels_total_v1.tsv");
@@ -191,15 +196,17 @@ void expectFittedLiver(const std::string& out, const nlohmann::json& report) {
   double sum = 0;
   for (const ClosestPoint& c : tree.closest(boundary.V)) sum += std::sqrt(c.squaredDistance);
   const double meanDistance = sum / double(boundary.V.rows());
-  // Measured 4.71 mm and 0.906: the markers are 21 mm apart, and between them the surface is free.
-  EXPECT_LT(meanDistance, 5.5) << "mean distance from the liver label's boundary to the fitted surface, mm";
+  // Within one voxel (3 mm) of the whole boundary, not only at the markers (15 mm apart): measured
+  // 2.45 mm and Dice 0.970 (150 markers without refits: 4.71 mm and 0.906).
+  EXPECT_LT(meanDistance, organs.labels.geometry.spacing.minCoeff())
+      << "mean distance from the liver label's boundary to the fitted surface, mm";
   const double overlap = dice(meshing::meshInsideMask(fitted, organs.labels.geometry), organs.labels, liver);
-  EXPECT_GT(overlap, 0.88) << "Dice of the fitted liver and the liver label";
+  EXPECT_GT(overlap, 0.95) << "Dice of the fitted liver and the liver label";
   std::cout << "fitted liver: mean distance to the label boundary " << meanDistance << " mm, Dice " << overlap
             << '\n';
 }
 
-// The main job on the shipped CT: segment it, then fit the liver template (about 2 minutes on 2 cores).
+// The main job on the shipped CT: segment it, then fit the liver template (about 5 minutes on 2 cores).
 TEST(Cli, DemoSegmentsTheScanAndFitsTheLiver) {
   const std::string out = outputDir() + "/demo";
   const CommandResult r = runVesalius({"demo", "--out", out, "--force", "--progress", "none"});

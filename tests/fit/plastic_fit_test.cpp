@@ -5,6 +5,7 @@
 
 #include "vesalius/fem/plastic_strain.h"
 
+#include "test_beam.h"
 #include "test_tets.h"
 
 #include <gtest/gtest.h>
@@ -22,10 +23,10 @@ Eigen::VectorXd identityStrains(const TetMesh& m) {
   return s;
 }
 
-void append(MatrixX3d& M, const Eigen::Vector3d& p) {
-  M.conservativeResize(M.rows() + 1, 3);
-  M.row(M.rows() - 1) = p.transpose();
-}
+using test_beam::append;
+using test_beam::beamMarkers;
+using test_beam::beamTets;
+using test_beam::bentAndStretched;
 
 // The mean x of the fitted cross-section at material x = X.
 double sectionX(const TetMesh& m, const MatrixX3d& V, double X) {
@@ -62,38 +63,6 @@ TEST(PlasticFit, StringStretchesOnlyWhereTheLandmarksAsk) {
   EXPECT_NEAR((x100 - x50) / 50, 1.0, 0.05);
   // Within the intervals the profile is not linear: the smooth plastic field overshoots past 50 and
   // folds back before the far attachment (docs/methods/plastic-fit.md, "Where we deviate").
-}
-
-// The beam of Figs. 4 and 22: bent over a radius of 60 mm, doubled in its z thickness.
-Eigen::Vector3d bentAndStretched(const Eigen::Vector3d& X) {
-  const double R = 60, theta = X.x() / R, r = R - X.y();
-  return Eigen::Vector3d(r * std::sin(theta), R - r * std::cos(theta), 2 * X.z());
-}
-
-TetMesh beamTets() {
-  TetMesh beam = test::boxTets(12, 3, 4, 5.0);
-  beam.V.col(1).array() -= 7.5;
-  beam.V.col(2).array() -= 10.0;
-  return beam;
-}
-
-// Its ends' bottom edges attached to where the bend takes them, ICP markers on the rest of its surface.
-FitMarkers beamMarkers(const TetMesh& beam) {
-  FitMarkers m;
-  const MatrixX3i faces = tetBoundary(beam.T);
-  std::vector<bool> onSurface(std::size_t(beam.V.rows()), false);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int j = 0; j < 3; ++j) onSurface[std::size_t(faces(f, j))] = true;
-  for (Eigen::Index v = 0; v < beam.V.rows(); ++v) {
-    const Eigen::Vector3d X = beam.V.row(v).transpose();
-    if ((X.x() == 0.0 || X.x() == 60.0) && X.z() == 0.0) {
-      append(m.attachmentMaterial, X);
-      append(m.attachmentTargets, bentAndStretched(X));
-    } else if (onSurface[std::size_t(v)] && X.x() > 0.0 && X.x() < 60.0) {
-      append(m.icp, bentAndStretched(X));
-    }
-  }
-  return m;
 }
 
 TEST(PlasticFit, BeamBendsByAttachmentsAndStretchesTransverselyByIcpMarkers) {

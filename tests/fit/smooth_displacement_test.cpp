@@ -69,8 +69,11 @@ TEST(SmoothDisplacement, OppositePullsStretchLessThanAskedAndLessWhenStiffer) {
     EXPECT_GT(up, 0) << smoothness;
     EXPECT_LT(up, previous) << "stiffer moves the pulled vertex less: " << smoothness;
     EXPECT_NEAR(U(bottom, 1), -up, 1e-9) << smoothness;
-    for (Eigen::Index i = 0; i < s.V.rows(); ++i)
-      if (std::abs(s.V(i, 1)) < 1e-9) EXPECT_NEAR(U(i, 1), 0.0, 1e-9) << "equator vertex " << i;
+    for (Eigen::Index i = 0; i < s.V.rows(); ++i) {
+      if (std::abs(s.V(i, 1)) < 1e-9) {
+        EXPECT_NEAR(U(i, 1), 0.0, 1e-9) << "equator vertex " << i;
+      }
+    }
     previous = up;
   }
 }

@@ -88,4 +88,21 @@ MatrixX3i tetBoundary(const MatrixX4i& T) {
   return F;
 }
 
+TriMesh tetBoundarySurface(const MatrixX3d& V, const MatrixX4i& T) {
+  const MatrixX3i F = tetBoundary(T);
+  Eigen::VectorXi newIndex = Eigen::VectorXi::Constant(V.rows(), -1);
+  TriMesh surface;
+  surface.V.resize(V.rows(), 3);
+  int used = 0;
+  for (Eigen::Index i = 0; i < F.size(); ++i) {
+    const int v = F.data()[i];
+    if (newIndex[v] >= 0) continue;
+    surface.V.row(used) = V.row(v);
+    newIndex[v] = used++;
+  }
+  surface.V.conservativeResize(used, 3);
+  surface.F = F.unaryExpr([&](int v) { return newIndex[v]; });
+  return surface;
+}
+
 }  // namespace vesalius

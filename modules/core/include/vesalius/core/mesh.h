@@ -52,4 +52,8 @@ Eigen::VectorXd tetVolumes(const MatrixX3d& V, const MatrixX4i& T);
 // Boundary triangles of a tet mesh (faces used by exactly one tet), oriented outward.
 MatrixX3i tetBoundary(const MatrixX4i& T);
 
+// The boundary of a tet mesh as a surface of its own: V: #V by 3, T: #T by 4; only the vertices its
+// triangles use (renumbered).
+TriMesh tetBoundarySurface(const MatrixX3d& V, const MatrixX4i& T);
+
 }  // namespace vesalius
