@@ -24,7 +24,7 @@ TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
   sampleBoundary("hip_left", 1000, 2, check);
   const CommandResult r =
       runVesalius({"fit", "--template", kTemplate, "--icp", icp, "--unattached", "--target-tets", "5000",
-                   "--template-faces", "1500", "--iterations", "3", "--out", out, "--surface-out", surface,
+                   "--template-faces", "1500", "--iterations", "3", "--refits", "1", "--out", out, "--surface-out", surface,
                    "--report", report, "--progress", "none", "--force"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectContains(r.err, "1 boundary edges, 5 non-manifold edges");
@@ -45,20 +45,22 @@ TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
   EXPECT_LT(R[1][0].get<double>(), -0.95);
   EXPECT_GT(R[2][1].get<double>(), 0.95);
   EXPECT_NEAR(m["placement"]["scale"].get<double>(), 1000.0, 200.0);  // measured 1111
-  // Measured 2.98 -> 0.56 mm after 3 ICP iterations (the issue asks 0.5).
-  EXPECT_GT(before, 2.0 * after);
-  EXPECT_LT(after, 0.75);
+  // Measured 2.98 -> 0.56 mm after 3 ICP iterations, then 0.08 mm after one refit from that shape (the
+  // issue asks 0.5; the fit alone reaches 0.35 mm after 7 ICP iterations, in three times the time).
+  EXPECT_LT(after, 0.5);
+  ASSERT_EQ(m["rounds"].size(), 2u);
+  EXPECT_GT(m["rounds"][0]["icp_error_mm"]["mean"].get<double>(), 2.0 * after);
 
-  // The label's whole boundary inside the scan, 1,000 points of it, against the fitted surface (the closed
-  // surface the tets were made from, carried by the fit): within one voxel on average.
+  // The label's whole boundary inside the scan, 1,000 points of it, against the fitted surface (after the
+  // refit, the boundary of its tets): within one voxel on average.
   const double meanDistance = meanDistanceToSurface(markerPositions(check), surface);
   RecordProperty("boundary_to_fitted_mean_mm", std::to_string(meanDistance));
   EXPECT_LT(meanDistance, ctVoxelMm());
-  EXPECT_LT(meanDistance, 2.0);  // measured 1.45 mm on the 3 mm grid
+  EXPECT_LT(meanDistance, 2.0);  // measured 1.20 mm on the 3 mm grid (1.45 without the refit)
 
   const double ratio = m["volume_mm3"]["fitted"].get<double>() / ctLabelVolumeMm3("hip_left");
   RecordProperty("volume_over_label", std::to_string(ratio));
-  EXPECT_NEAR(ratio, 1.0, 0.2);  // measured 1.10 (the markers lie on the smoothed label surface, outside the voxel centres)
+  EXPECT_NEAR(ratio, 1.0, 0.2);  // measured 1.11 (the markers lie on the smoothed label surface, outside the voxel centres)
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/fem/plastic_strain.h"
 
-
 namespace vesalius::fit {
 
 namespace {
