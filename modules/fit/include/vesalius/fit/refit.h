@@ -5,7 +5,7 @@
 // search's trials invert them: the ICP stage stalls (docs/methods/plastic-fit.md, "Refits"). A new tet mesh
 // of the fitted shape has none of those tets, and its plastic strains start again at the identity, so the
 // smoothness term measures the change from the shape reached, not from the template: the stiffness is
-// lowered in steps, as non-rigid ICP does (Amberg, Romdhani, Vetter, CVPR 2007, §3.2).
+// lowered in steps, as non-rigid ICP lowers its stiffness (Amberg, Romdhani, Vetter, CVPR 2007).
 //
 // Each refit: the last round's fitted boundary, tetrahedralized by the caller's `remesh` (the fit module
 // knows no mesher), is the rest shape; landmarks' and attachments' template points are carried to where
