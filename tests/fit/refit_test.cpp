@@ -2,6 +2,8 @@
 // a first fit cut short, tetrahedralized afresh by TetGen between rounds.
 #include "vesalius/fit/refit.h"
 
+#include "vesalius/core/self_intersections.h"
+#include "vesalius/core/triangle_tree.h"
 #include "vesalius/fem/plastic_fem.h"
 #include "vesalius/fem/plastic_strain.h"
 #include "vesalius/fit/point_constraints.h"
@@ -11,6 +13,9 @@
 #include "test_tets.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace vesalius::fit {
 namespace {
@@ -68,6 +73,17 @@ TEST(Refit, RefitsGoOnFromAFitCutShort) {
       embedMaterialPoints(last.rest.V, last.rest.T, last.markers.attachmentMaterial, markers.attachmentTargets, 1.0);
   const Eigen::VectorXd x = PlasticFem::flatten(last.result.V);
   for (const PointConstraint& p : held) EXPECT_LT((constrainedPoint(p, x) - p.target).norm(), 1.0);
+  // The beam's own surface, carried through both rounds, lies on the refitted boundary, untangled.
+  const TriMesh carried = carriedSurface(tetBoundarySurface(beam.V, beam.T), rounds);
+  const TriMesh fitted = tetBoundarySurface(last.result.V, last.rest.T);
+  double sum = 0, farthest = 0;
+  for (const ClosestPoint& c : TriangleTree(fitted.V, fitted.F).closest(carried.V)) {
+    sum += std::sqrt(c.squaredDistance);
+    farthest = std::max(farthest, std::sqrt(c.squaredDistance));
+  }
+  EXPECT_LT(sum / double(carried.V.rows()), 0.2);  // measured 0.08 mm
+  EXPECT_LT(farthest, 1.0);                          // measured 0.45 mm
+  EXPECT_TRUE(selfIntersections(carried.V, carried.F).empty());
   // No refit when every marker is already close.
   FitOptions loose = options;
   loose.maxIcpError = 1e3;

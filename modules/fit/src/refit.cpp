@@ -1,6 +1,9 @@
 // Refits (refit.h): the fit run again from the shape it reached.
 #include "vesalius/fit/refit.h"
 
+#include "vesalius/fit/embedding.h"
+#include "vesalius/fit/smooth_displacement.h"
+
 #include "vesalius/core/tet_embedding.h"
 #include "vesalius/fem/plastic_strain.h"
 
@@ -24,6 +27,19 @@ FitMarkers carriedMarkers(const FitMarkers& markers, const TetMesh& rest, const 
   next.templateLandmarks = carried(markers.templateLandmarks, rest, fittedV);
   next.attachmentMaterial = carried(markers.attachmentMaterial, rest, fittedV);
   return next;
+}
+
+TriMesh carriedSurface(const TriMesh& surface, const std::vector<FitRound>& rounds) {
+  if (rounds.empty()) return surface;
+  const FitRound& first = rounds.front();
+  TriMesh carried = embedSurface(surface, first.rest.V, first.rest.T, first.result.V);
+  for (std::size_t k = 1; k < rounds.size(); ++k) {
+    const FitRound& round = rounds[k];
+    const MatrixX3d rest = tetBoundarySurface(round.rest.V, round.rest.T).V;
+    const MatrixX3d moved = tetBoundarySurface(round.result.V, round.rest.T).V;
+    carried.V += smoothDisplacement(carried, rest, moved - rest, Eigen::VectorXd::Ones(rest.rows()));
+  }
+  return carried;
 }
 
 std::vector<FitRound> refit(FitRound first, const FitOptions& fitOptions, const RefitOptions& options,

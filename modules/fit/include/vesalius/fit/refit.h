@@ -44,6 +44,12 @@ using Remesh = std::function<TetMesh(const TriMesh& fittedBoundary)>;
 // points) carried from `rest` to the fitted positions `fittedV`; the scan-side points are unchanged.
 FitMarkers carriedMarkers(const FitMarkers& markers, const TetMesh& rest, const MatrixX3d& fittedV);
 
+// A surface in the first round's rest (template) space carried through every round: by the template's
+// tets (embedding.h, seed 002 §4.3), then through each refit by a smooth displacement of its vertices
+// (smooth_displacement.h) that moves it as the refit moved its boundary vertices. Embedding it in a
+// refit's tets instead tangles it where the refit crushed tets near the surface.
+TriMesh carriedSurface(const TriMesh& surface, const std::vector<FitRound>& rounds);
+
 // first: the first round (fitPlasticStrains on the template). Runs up to options.refits refits, each only
 // while the last round left a marker farther than fitOptions.maxIcpError, and keeps a refit only if it
 // lowered the mean ICP error by at least fitOptions.minIcpGain of it (the last kept round is the result).
