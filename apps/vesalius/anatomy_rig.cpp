@@ -66,6 +66,7 @@ void writeFrames(const std::string& path, const Skeleton& skeleton, const WriteO
         for (int c = 0; c < 3; ++c) out << ' ' << world[j].linear()(r, c);
       out << '\n';
     }
+    out.close();  // the last buffered bytes reach the file here, so check after it
     if (!out) throw BadInput(temporary, "cannot write");
   });
 }
@@ -111,6 +112,7 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
   writeAtomically(dir + "/bones.txt", options, [&](const std::string& path) {
     std::ofstream out(path);
     for (int j : rig.boneJoint) out << rig.skeleton.joints[j].name << '\n';
+    out.close();
     if (!out) throw BadInput(path, "cannot write");
   });
   std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();

@@ -171,6 +171,7 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
           << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\t' << q.tetVolumeChangePct << '\t'
           << q.skinnedTetVolumeChangePct << '\t' << q.restore.maxMove << '\n';
     }
+    out.close();  // the last buffered bytes reach the file here, so check after it
     if (!out) throw BadInput(temporary, "cannot write");
   });
 }

@@ -1,6 +1,7 @@
 // vesalius: patient-specific anatomical models from CT and MRI scans. One subcommand per step.
 #include "common.h"
 
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/transparent_huge_pages.h"
 
@@ -8,6 +9,7 @@
 
 int main(int argc, char** argv) {
   vesalius::restartWithTransparentHugePages(argv);  // the fits' and rigs' matrices fault in 2 MB at a time
+  vesalius::installCleanupOnSignal();  // Ctrl-C during a write leaves no temporary file
   CLI::App app{"Vesalius: patient-specific anatomical models from CT and MRI scans.", "vesalius"};
   app.require_subcommand(1);
   app.set_version_flag("--version", VESALIUS_VERSION);

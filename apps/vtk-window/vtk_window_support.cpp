@@ -35,6 +35,9 @@ void writeScreenshot(vtkRenderWindow* window, const std::string& path) {
     png->SetInputConnection(capture->GetOutputPort());
     png->SetFileName(temporaryPath.c_str());
     png->Write();
+    std::error_code ec;
+    if (png->GetErrorCode() != 0 || std::filesystem::file_size(temporaryPath, ec) == 0 || ec)
+      throw BadInput(path, "cannot write the screenshot");
   });
 }
 

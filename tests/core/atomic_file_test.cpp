@@ -1,11 +1,18 @@
-// writeAtomically: nothing is lost, nothing half-written is left; fileExtension.
+// writeAtomically: nothing is lost, nothing half-written is left, no planted symlink is followed, an
+// interrupted write leaves no temporary; fileExtension.
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -49,8 +56,9 @@ TEST_F(AtomicFile, WritesThroughATemporaryBesideTheTarget) {
   });
   EXPECT_EQ(get(target), "voxels");
   EXPECT_NE(temporary, target);
-  EXPECT_EQ(fs::path(temporary).parent_path(), dir);
-  EXPECT_EQ(fileExtension(temporary), ".nii.gz");
+  // In a private folder beside the target, under the target's own name.
+  EXPECT_EQ(fs::path(temporary).parent_path().parent_path(), dir);
+  EXPECT_EQ(fs::path(temporary).filename(), "scan.nii.gz");
   EXPECT_FALSE(fs::exists(temporary));
   EXPECT_EQ(listing(), std::vector<std::string>{"scan.nii.gz"});
 }
@@ -108,6 +116,129 @@ TEST_F(AtomicFile, NeverReplacesAFolderOrDevice) {
   EXPECT_THROW(writeAtomically("/dev/null", {true}, [&](const std::string&) { called = true; }), UsageError);
   EXPECT_FALSE(called);
   EXPECT_TRUE(fs::is_directory(dir / "labels.nii.gz"));
+}
+
+TEST_F(AtomicFile, ErrorsNameTheOutputNotTheTemporary) {
+  const std::string target = (dir / "liver.ply").string();
+  try {
+    writeAtomically(target, {},
+                    [](const std::string& tmp) { throw BadInput(tmp, "cannot open " + tmp + " for writing"); });
+    FAIL() << "the writer's error was swallowed";
+  } catch (const BadInput& error) {
+    EXPECT_EQ(std::string(error.what()), target + ": cannot open " + target + " for writing");
+    EXPECT_EQ(error.file(), target);
+  }
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(AtomicFile, AWriterThatMakesNoFileFails) {
+  const std::string target = (dir / "skin.vtp").string();
+  try {
+    writeAtomically(target, {}, [](const std::string&) {});
+    FAIL() << "nothing was written, yet no error";
+  } catch (const BadInput& error) {
+    EXPECT_EQ(error.file(), target);
+    std::cout << "a writer that made no file: " << error.what() << "\n";
+  }
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(AtomicFile, WriteFileBytesChecksEveryByte) {
+  const std::string path = (dir / "out.txt").string();
+  writeFileBytes(path, "twelve bytes");
+  EXPECT_EQ(get(path), "twelve bytes");
+  // /dev/full accepts the open and fails every write with ENOSPC, as a full disk does.
+  if (fs::exists("/dev/full")) {
+    try {
+      writeFileBytes("/dev/full", "x");
+      FAIL() << "a write to /dev/full reported success";
+    } catch (const BadInput& error) {
+      EXPECT_EQ(error.file(), "/dev/full");
+      std::cout << "/dev/full: " << error.what() << "\n";
+    }
+  }
+}
+
+// Issue 32, item 4: a symlink planted at a guessable temporary name such as ".<name>.tmp<pid><ext>" must not
+// make the write land in its target; the temporary lives in a folder only this process can write in.
+TEST_F(AtomicFile, APlantedSymlinkIsNotFollowed) {
+  const fs::path victim = dir.parent_path() / (dir.filename().string() + "-victim.txt");
+  put(victim.string(), "precious");
+  const std::string target = (dir / "o.fcsv").string();
+  const fs::path planted = dir / (".o.fcsv.tmp" + std::to_string(::getpid()) + ".fcsv");
+  fs::create_symlink(victim, planted);
+  std::string temporary;
+  writeAtomically(target, {}, [&](const std::string& tmp) {
+    temporary = tmp;
+    EXPECT_FALSE(fs::exists(fs::symlink_status(tmp)));  // nothing waits at the name the writer gets
+    struct stat folder {};
+    ASSERT_EQ(::lstat(fs::path(tmp).parent_path().c_str(), &folder), 0);
+    EXPECT_TRUE(S_ISDIR(folder.st_mode));
+    EXPECT_EQ(folder.st_mode & 0777, 0700u);
+    EXPECT_EQ(folder.st_uid, ::geteuid());
+    put(tmp, "markers");  // opened by name, following symlinks, as ITK and VTK open files
+  });
+  EXPECT_NE(fs::path(temporary), planted);
+  EXPECT_EQ(get(victim), "precious");
+  EXPECT_EQ(get(target), "markers");
+  EXPECT_TRUE(fs::is_symlink(planted));  // not ours to remove
+  fs::remove(victim);
+}
+
+// Issue 32, item 6: a child process writes slowly and is interrupted; no hidden temporary is left.
+// `nested`: the writer also fills a subfolder, as a multi-file output (a reference anatomy) does.
+void expectNoTemporaryAfterSignal(const fs::path& dir, int signal, bool nested = false) {
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const std::string target = (dir / "th.nii.gz").string();
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(ready[0]);
+    installCleanupOnSignal();
+    try {
+      writeAtomically(target, {}, [&](const std::string& tmp) {
+        writeFileBytes(tmp, std::string(1 << 20, 'v'));
+        if (nested) {
+          const fs::path tissues = fs::path(tmp).parent_path() / "tissues";
+          fs::create_directories(tissues / "bones");
+          writeFileBytes((tissues / "liver.obj").string(), "v 0 0 0\n");
+          writeFileBytes((tissues / "bones" / "femur.obj").string(), "v 0 0 0\n");
+        }
+        const char byte = 1;
+        if (::write(ready[1], &byte, 1) != 1) ::_exit(10);
+        for (;;) ::pause();  // a write that never ends; only the signal stops it
+      });
+    } catch (...) {
+      ::_exit(11);
+    }
+    ::_exit(12);
+  }
+  ::close(ready[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1) << "the child died before it started writing";
+  ::close(ready[0]);
+  std::vector<std::string> during;
+  for (const auto& entry : fs::directory_iterator(dir)) during.push_back(entry.path().filename());
+  ASSERT_EQ(during.size(), 1u) << "the child's temporary folder is not there";
+  ASSERT_EQ(::kill(child, signal), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
+  if (WIFSIGNALED(status)) EXPECT_EQ(WTERMSIG(status), signal);
+  std::vector<std::string> after;
+  for (const auto& entry : fs::directory_iterator(dir)) after.push_back(entry.path().filename());
+  EXPECT_TRUE(after.empty()) << "left behind: " << (after.empty() ? "" : after.front());
+  std::cout << "signal " << signal << " during a write to " << target << ": temporary " << during.front()
+            << " existed, " << after.size() << " entries left after the child died of the signal\n";
+}
+
+TEST_F(AtomicFile, SigintDuringAWriteLeavesNoTemporary) { expectNoTemporaryAfterSignal(dir, SIGINT); }
+
+TEST_F(AtomicFile, SigtermDuringAWriteLeavesNoTemporary) { expectNoTemporaryAfterSignal(dir, SIGTERM); }
+
+TEST_F(AtomicFile, SigintDuringAMultiFileWriteLeavesNoTemporary) {
+  expectNoTemporaryAfterSignal(dir, SIGINT, true);
 }
 
 TEST(AtomicFileExtension, KnowsDoubleExtensionsAndLowersCase) {

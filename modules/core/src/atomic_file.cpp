@@ -2,16 +2,123 @@
 
 #include "vesalius/core/error.h"
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cerrno>
+#include <climits>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace vesalius {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+std::string errnoText(int error) { return std::strerror(error); }
+
+// The signal cleanup table: fixed storage and lock-free atomics, so the handler reads it without locks or
+// allocation.
+constexpr int kSlots = 64;
+enum SlotState : int { kFree = 0, kClaimed = 1, kLive = 2 };
+struct Slot {
+  std::atomic<int> state{kFree};
+  char path[PATH_MAX];
+};
+Slot slots[kSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the table without locks");
+
+int claimSlot() {
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = kFree;
+    if (slots[i].state.compare_exchange_strong(expected, kClaimed)) return i;
+  }
+  return -1;
+}
+
+// Removes what the open folder `fd` holds, subfolders to `depth` levels (a multi-file output such as a
+// reference anatomy has one). Async-signal-safe: openat, getdents64, unlinkat, lseek and close only.
+void emptyFolderInHandler(int fd, int depth) {
+  alignas(8) char buffer[2048];
+  // Removing entries while reading the listing may hide others, so the listing is read again until a
+  // pass removes nothing.
+  for (int pass = 0; pass < 16; ++pass) {
+    bool removed = false;
+    ::lseek(fd, 0, SEEK_SET);
+    for (;;) {
+      const ssize_t n = ::getdents64(fd, buffer, sizeof buffer);
+      if (n <= 0) break;
+      for (ssize_t offset = 0; offset < n;) {
+        const auto* entry = reinterpret_cast<const struct dirent64*>(buffer + offset);
+        offset += entry->d_reclen;
+        const char* name = entry->d_name;
+        if (name[0] == '.' && (name[1] == 0 || (name[1] == '.' && name[2] == 0))) continue;
+        if (::unlinkat(fd, name, 0) == 0) {
+          removed = true;
+          continue;
+        }
+        if (depth > 0) {
+          const int sub = ::openat(fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          if (sub >= 0) {
+            emptyFolderInHandler(sub, depth - 1);
+            ::close(sub);
+          }
+        }
+        if (::unlinkat(fd, name, AT_REMOVEDIR) == 0) removed = true;
+      }
+    }
+    if (!removed) break;
+  }
+}
+
+void removeFolderInHandler(const char* path) {
+  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd >= 0) {
+    emptyFolderInHandler(fd, 4);
+    ::close(fd);
+  }
+  ::rmdir(path);
+}
+
+extern "C" void cleanupOnSignal(int signal) {
+  const int savedErrno = errno;
+  for (Slot& slot : slots)
+    if (slot.state.load() == kLive) removeFolderInHandler(slot.path);
+  errno = savedErrno;
+  // Die of the signal, as without the handler, so the parent sees the same status.
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+// Replaces every `from` in `text` by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+// fsync of the folder makes the rename itself durable. A file system that cannot sync folders says EINVAL.
+void syncFolder(const fs::path& folder, const std::string& nameForErrors) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw BadInput(nameForErrors, "cannot open its folder to flush it to the disk: " + errnoText(errno));
+  const int synced = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (synced != 0 && error != EINVAL)
+    throw BadInput(nameForErrors, "written, but its folder could not be flushed to the disk: " + errnoText(error));
+}
+
+}  // namespace
 
 std::string fileExtension(const std::string& path) {
   std::string name = fs::path(path).filename().string();
@@ -22,6 +129,86 @@ std::string fileExtension(const std::string& path) {
   }
   const std::size_t dot = name.rfind('.');
   return dot == std::string::npos || dot == 0 ? std::string() : name.substr(dot);
+}
+
+TemporaryFolder::TemporaryFolder(const std::string& besidePath) {
+  const fs::path beside(besidePath);
+  const fs::path parent = beside.has_parent_path() ? beside.parent_path() : fs::path(".");
+  // Hidden and named after the output so a person can tell what it was; the name is cut so the folder's
+  // own name stays within NAME_MAX.
+  const std::string name = beside.filename().string().substr(0, 200);
+  const std::string pattern = (parent / ("." + name + ".XXXXXX")).string();
+  slot_ = pattern.size() < PATH_MAX ? claimSlot() : -1;
+  std::vector<char> local;
+  char* buffer = nullptr;
+  if (slot_ >= 0) {
+    // mkdtemp fills in the slot's own buffer, which is marked live first, so no moment passes in which
+    // the folder exists but the handler would not find it.
+    buffer = slots[slot_].path;
+    std::memcpy(buffer, pattern.c_str(), pattern.size() + 1);
+    slots[slot_].state.store(kLive);
+  } else {
+    local.assign(pattern.begin(), pattern.end());
+    local.push_back('\0');
+    buffer = local.data();
+  }
+  if (!::mkdtemp(buffer)) {
+    const int error = errno;
+    if (slot_ >= 0) slots[slot_].state.store(kFree);
+    throw BadInput(besidePath, "cannot create a temporary folder beside it: " + errnoText(error));
+  }
+  path_ = buffer;
+}
+
+TemporaryFolder::~TemporaryFolder() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+  if (slot_ >= 0) slots[slot_].state.store(kFree);
+}
+
+void installCleanupOnSignal() {
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction previous {};
+    if (::sigaction(signal, nullptr, &previous) != 0) continue;
+    if (previous.sa_handler == SIG_IGN) continue;  // nohup and the like: the signal stays ignored
+    struct sigaction action {};
+    action.sa_handler = cleanupOnSignal;
+    sigemptyset(&action.sa_mask);
+    // Other cleanup signals wait until this one has removed the folders.
+    sigaddset(&action.sa_mask, SIGINT);
+    sigaddset(&action.sa_mask, SIGTERM);
+    sigaddset(&action.sa_mask, SIGHUP);
+    ::sigaction(signal, &action, nullptr);
+  }
+}
+
+void writeFileBytes(const std::string& path, std::string_view bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0666);
+  if (fd < 0) throw BadInput(path, "cannot create: " + errnoText(errno));
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      // write() returns 0 only for a zero-length request; treat it as no space, as it cannot progress.
+      const int error = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      throw BadInput(path, "cannot write: " + errnoText(error));
+    }
+    data += n;
+    left -= std::size_t(n);
+  }
+  if (::close(fd) != 0) throw BadInput(path, "cannot write: " + errnoText(errno));
+}
+
+void syncFile(const std::string& path, const std::string& nameForErrors) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) throw BadInput(nameForErrors, "cannot open to flush it to the disk: " + errnoText(errno));
+  const int synced = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (synced != 0) throw BadInput(nameForErrors, "cannot write: " + errnoText(error));
 }
 
 void writeAtomically(const std::string& path, const WriteOptions& options,
@@ -36,16 +223,23 @@ void writeAtomically(const std::string& path, const WriteOptions& options,
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec)) throw UsageError(path + ": folder " + parent.string() + " does not exist");
 
-  // Same folder, so the rename is atomic; same extension, so format-by-extension writers still work.
-  const std::string ext = fileExtension(path);
-  const fs::path temporary =
-      parent / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + ext);
+  // Same folder, so the rename is atomic; same file name, so format-by-extension writers still work.
+  const TemporaryFolder folder(path);
+  const std::string temporary = folder.path() + "/" + target.filename().string();
   try {
-    write(temporary.string());
-    fs::rename(temporary, target);
-  } catch (...) {
-    fs::remove(temporary, ec);
-    throw;
+    write(temporary);
+    struct stat written {};
+    if (::lstat(temporary.c_str(), &written) != 0 || !S_ISREG(written.st_mode))
+      throw BadInput(path, "cannot write: the writer produced no file");
+    syncFile(temporary, path);
+    if (::rename(temporary.c_str(), path.c_str()) != 0)
+      throw BadInput(path, "cannot move the written file into place: " + errnoText(errno));
+    syncFolder(parent, path);
+  } catch (const BadInput& error) {
+    // Writers name the file they were given; the user knows only the output.
+    throw BadInput(replaced(error.file(), temporary, path), replaced(error.problem(), temporary, path));
+  } catch (const fs::filesystem_error& error) {
+    throw BadInput(path, "cannot write: " + error.code().message());
   }
 }
 

@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -156,40 +155,23 @@ void checkNotExisting(const std::string& path, const WriteOptions& options) {
   if (!options.force && fs::exists(path)) throw UsageError(path + ": exists; pass --force to replace it");
 }
 
-// Removes a staging folder however its scope is left.
-struct StagingFolder {
-  fs::path path;
-  ~StagingFolder() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-// A new empty folder beside `target` (same file system, so moving out of it is a rename).
-fs::path createStagingFolder(const fs::path& target) {
-  std::random_device random;
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    fs::path folder =
-        target.parent_path() / ("." + target.filename().string() + ".staging-" + std::to_string(random()));
-    if (fs::create_directory(folder)) return folder;
-  }
-  throw BadInput(target.string(), "cannot create a staging folder beside it");
-}
-
 // .nhdr and .mhd headers name their data file after their own stem, so ITK writes them under their final
 // names into a staging folder; the data file moves out first and the header last, through writeAtomically.
 void writeDetachedImage(const std::string& path, const WriteOptions& options,
                         const itk_seam::RawHeader& header, const std::vector<float>& values) {
   checkNotExisting(path, options);
   const fs::path target(path);
-  StagingFolder staging{createStagingFolder(target)};
-  const fs::path stagedHeader = staging.path / target.filename();
+  const TemporaryFolder staging(path);
+  const fs::path stagedHeader = fs::path(staging.path()) / target.filename();
   itk_seam::writeImageFile(stagedHeader.string(), header, values);
   std::vector<fs::path> dataFiles;
-  for (const fs::directory_entry& entry : fs::directory_iterator(staging.path))
+  for (const fs::directory_entry& entry : fs::directory_iterator(staging.path()))
     if (entry.path() != stagedHeader) dataFiles.push_back(entry.path());
-  for (const fs::path& data : dataFiles)
-    checkNotExisting((target.parent_path() / data.filename()).string(), options);
+  for (const fs::path& data : dataFiles) {
+    const std::string final = (target.parent_path() / data.filename()).string();
+    checkNotExisting(final, options);
+    syncFile(data.string(), final);
+  }
   writeAtomically(path, options, [&](const std::string& temporaryPath) {
     for (const fs::path& data : dataFiles) fs::rename(data, target.parent_path() / data.filename());
     fs::rename(stagedHeader, temporaryPath);
@@ -334,7 +316,15 @@ void writeLabelMap(const std::string& path, const LabelMap& labelMap, const Writ
   const std::vector<float> values(labels.values.begin(), labels.values.end());
   writeImage(path, options,
              rawHeaderOf(labels.geometry, largest < 256 ? PixelType::UInt8 : PixelType::UInt16), values);
-  writeLabelTable(tablePath, labelMap.table, options);
+  try {
+    writeLabelTable(tablePath, labelMap.table, options);
+  } catch (...) {
+    // Labels without their table would read back with made-up names (a full disk can fail the table
+    // alone), so the labels go too.
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    throw;
+  }
 }
 
 std::string labelTableSidecarPath(const std::string& labelMapPath) { return pathStem(labelMapPath) + ".tsv"; }

@@ -21,7 +21,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -263,6 +265,83 @@ T toStored(float value) {
   }
 }
 
+// Throws BadInput if a MetaImage file (.mha, or .mhd with its data file) holds fewer data bytes than its
+// header says: ITK reads such a file with a warning on stderr and zeros for the missing voxels.
+void checkMetaImageBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BadInput(path, "cannot open");
+  std::map<std::string, std::string> fields;
+  std::string line;
+  std::uint64_t headerBytes = 0;
+  while (std::getline(in, line) && headerBytes < (1 << 20)) {
+    headerBytes += line.size() + 1;
+    const std::size_t equals = line.find('=');
+    if (equals == std::string::npos) continue;
+    const auto trimmed = [](std::string s) {
+      s.erase(0, s.find_first_not_of(" \t\r"));
+      s.erase(s.find_last_not_of(" \t\r") + 1);
+      return s;
+    };
+    const std::string key = trimmed(line.substr(0, equals));
+    fields[key] = trimmed(line.substr(equals + 1));
+    if (key == "ElementDataFile") break;  // the header's last field; data follows
+  }
+  if (!fields.count("ElementDataFile")) throw BadInput(path, "MetaImage header without ElementDataFile");
+  std::uint64_t expected = 0;
+  if (fields["CompressedData"] == "True") {
+    if (!fields.count("CompressedDataSize")) return;  // nothing to count against
+    expected = std::stoull(fields["CompressedDataSize"]);
+  } else {
+    static const std::map<std::string, std::uint64_t> kBytes = {
+        {"MET_CHAR", 1}, {"MET_UCHAR", 1}, {"MET_SHORT", 2}, {"MET_USHORT", 2}, {"MET_INT", 4}, {"MET_UINT", 4},
+        {"MET_LONG", 4}, {"MET_ULONG", 4}, {"MET_LONG_LONG", 8}, {"MET_ULONG_LONG", 8}, {"MET_FLOAT", 4},
+        {"MET_DOUBLE", 8}};
+    const auto type = kBytes.find(fields["ElementType"]);
+    if (type == kBytes.end()) return;
+    const auto channels = fields.find("ElementNumberOfChannels");
+    expected = type->second * (channels == fields.end() ? 1 : std::stoull(channels->second));
+    std::istringstream sizes(fields["DimSize"]);
+    for (std::uint64_t n; sizes >> n;) expected *= n;
+  }
+  const std::string& dataFile = fields["ElementDataFile"];
+  std::uint64_t actual = 0;
+  if (dataFile != "LOCAL")
+    actual = std::filesystem::file_size(std::filesystem::path(path).parent_path() / dataFile);
+  else if (const std::uint64_t size = std::filesystem::file_size(path); size > headerBytes)
+    actual = size - headerBytes;
+  if (actual < expected)
+    throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(expected) + " bytes");
+}
+
+// ITK's NIfTI and MetaImage writers report a failed write (a full disk) on stderr only, so what was
+// written is read back: a truncated file fails to read, or holds too few voxels. ITK reads a truncated
+// NIfTI file without complaint, so its bytes are counted as the reader counts them.
+template <class T>
+void checkReadsBack(const std::string& path, itk::SizeValueType voxels) {
+  const auto fail = [&](const std::string& reason) {
+    throw BadInput(path, "cannot write: the file written does not read back (" + reason + "); is the disk full?");
+  };
+  const std::string extension = fileExtension(path);
+  try {
+    if (isNifti(path)) checkNiftiFile(path, true);
+    if (extension == ".mha" || extension == ".mhd") checkMetaImageBytes(path);
+  } catch (const BadInput& error) {
+    fail(error.problem());
+  } catch (const std::exception& error) {  // a number or file size that cannot be read
+    fail(error.what());
+  }
+  using ImageType = itk::Image<T, 3>;
+  auto reader = itk::ImageFileReader<ImageType>::New();
+  reader->SetFileName(path);
+  try {
+    reader->Update();
+  } catch (const itk::ExceptionObject& error) {
+    fail(itkErrorReason(error));
+  }
+  if (reader->GetOutput()->GetLargestPossibleRegion().GetNumberOfPixels() != voxels)
+    throw BadInput(path, "cannot write: the file written does not hold every voxel; is the disk full?");
+}
+
 template <class T>
 void writeAs(const std::string& path, const RawHeader& header, const std::vector<float>& values) {
   using ImageType = itk::Image<T, 3>;
@@ -290,6 +369,9 @@ void writeAs(const std::string& path, const RawHeader& header, const std::vector
   writer->SetInput(image);
   writer->SetUseCompression(true);
   writer->Update();
+  writer = nullptr;
+  image = nullptr;  // the read-back below needs the memory
+  checkReadsBack<T>(path, region.GetNumberOfPixels());
 }
 
 }  // namespace

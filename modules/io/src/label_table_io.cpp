@@ -162,12 +162,7 @@ void writeLabelTable(const std::string& path, const LabelTable& table, const Wri
   } catch (const BadInput& error) {
     throw BadInput(path, error.problem());
   }
-  writeAtomically(path, options, [&](const std::string& temporaryPath) {
-    std::ofstream out(temporaryPath, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw BadInput(path, "cannot write the label table");
-  });
+  writeAtomically(path, options, [&](const std::string& temporaryPath) { writeFileBytes(temporaryPath, text); });
 }
 
 }  // namespace vesalius::io

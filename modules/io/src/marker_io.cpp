@@ -26,12 +26,6 @@ Format formatOf(const std::string& path) {
 
 constexpr const char* kKnown = ".mrk.json, .fcsv, .csv or .annot";
 
-void writeText(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (out) out.write(text.data(), std::streamsize(text.size()));
-  if (!out) throw BadInput(path, std::string("cannot write: ") + std::strerror(errno));
-}
-
 std::string formatText(const std::string& path, const MarkerSet& set, const GridGeometry* scanGeometry) {
   switch (formatOf(path)) {
     case Format::SlicerMarkups:
@@ -82,7 +76,7 @@ MarkerSet readMarkers(const std::string& path, const MarkerReadOptions& options)
 void writeMarkers(const std::string& path, const MarkerSet& set, const WriteOptions& options,
                   const GridGeometry* scanGeometry) {
   const std::string text = formatText(path, set, scanGeometry);
-  writeAtomically(path, options, [&](const std::string& temporaryPath) { writeText(temporaryPath, text); });
+  writeAtomically(path, options, [&](const std::string& temporaryPath) { writeFileBytes(temporaryPath, text); });
 }
 
 }  // namespace vesalius::io

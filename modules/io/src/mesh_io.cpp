@@ -4,6 +4,7 @@
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/self_intersections.h"
 
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/text_file.h"
@@ -56,15 +57,8 @@ std::string withoutExtension(const std::string& path) {
   return path.substr(0, path.size() - fileExtension(path).size());
 }
 
-void writeTextFile(const std::string& path, const std::string& content, const std::string& target) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(content.data(), static_cast<std::streamsize>(content.size()));
-  out.close();
-  if (!out) throw BadInput(target, "cannot write");
-}
-
 void writeTextAtomically(const std::string& path, const WriteOptions& options, const std::string& content) {
-  writeAtomically(path, options, [&](const std::string& temporary) { writeTextFile(temporary, content, path); });
+  writeAtomically(path, options, [&](const std::string& temporary) { writeFileBytes(temporary, content); });
 }
 
 TetMesh readTetGen(const std::string& path) {

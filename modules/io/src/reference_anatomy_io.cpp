@@ -112,11 +112,15 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
 void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& anatomy, const WriteOptions& options,
                            const std::vector<std::pair<std::string, TriMesh>>& extras) {
   anatomy.validate(folder);
-  const fs::path target = fs::path(folder).lexically_normal();
+  fs::path target = fs::path(folder).lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();  // "out/" names the folder "out"
   if (fs::exists(target) && !options.force)
     throw UsageError(folder + " exists; pass --force to replace it");
-  const fs::path temporary = target.string() + ".partial";
-  fs::remove_all(temporary);
+  if (target.has_parent_path()) fs::create_directories(target.parent_path());
+  // A private folder beside the target (core/atomic_file.h): no planted symlink is followed, and an
+  // interrupted write leaves nothing.
+  const TemporaryFolder staging(target.string());
+  const fs::path temporary = staging.path();
   try {
     fs::create_directories(temporary / "tissues");
     Json doc;
@@ -144,13 +148,25 @@ void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& an
     for (const ReferencePoint& point : anatomy.points)
       doc["points"].push_back({{"name", point.name}, {"tissue", point.tissue}, {"position", toJson(point.position)}});
     for (const auto& [file, mesh] : extras) writeTriMesh((temporary / file).string(), mesh);
-    std::ofstream out(temporary / "reference.json");
-    out << doc.dump(2) << '\n';
-    if (!out) throw BadInput(folder, "cannot write reference.json");
-  } catch (...) {
-    fs::remove_all(temporary);
-    throw;
+    try {
+      writeFileBytes((temporary / "reference.json").string(), doc.dump(2) + '\n');
+      syncFile((temporary / "reference.json").string(), folder);
+    } catch (const BadInput& error) {
+      throw BadInput(folder, "reference.json: " + error.problem());
+    }
+  } catch (const BadInput& error) {
+    // The writers name files in the private folder; the user knows the target.
+    const auto named = [&](std::string text) {
+      const std::string from = temporary.string(), to = target.string();
+      for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        text.replace(at, from.size(), to);
+      return text;
+    };
+    throw BadInput(named(error.file()), named(error.problem()));
   }
+  // mkdtemp made the folder private; the finished one is readable by others, as a new folder would be.
+  fs::permissions(temporary, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                 fs::perms::others_read | fs::perms::others_exec);
   fs::remove_all(target);
   fs::rename(temporary, target);
 }

@@ -24,11 +24,8 @@ Report::StageTimer::~StageTimer() {
 }
 
 void Report::write(const std::string& path, const WriteOptions& options) const {
-  writeAtomically(path, options, [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << json_.dump(2) << '\n';
-    if (!out) throw BadInput(path, "cannot write the report");
-  });
+  const std::string text = json_.dump(2) + '\n';
+  writeAtomically(path, options, [&](const std::string& temporary) { writeFileBytes(temporary, text); });
 }
 
 }  // namespace vesalius::io

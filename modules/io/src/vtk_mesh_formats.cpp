@@ -12,6 +12,7 @@
 #include <vtkCellTypes.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -43,6 +44,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -158,10 +160,29 @@ void readChecked(Reader* reader, const std::string& path) {
   });
 }
 
+// Every VTK format starts with a header, so an empty file is a failed write that VTK did not report
+// (vtkPLYWriter does not check its writes).
+void checkNotEmpty(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size == 0) throw BadInput(path, "cannot write: nothing reached the file; is the disk full?");
+}
+
 template <class Writer>
 void writeChecked(Writer* writer, const std::string& path) {
   writer->SetFileName(path.c_str());
-  runChecked(writer, path, [writer] { return writer->Write() == 1; });
+  try {
+    runChecked(writer, path,
+               [writer] { return writer->Write() == 1 && writer->GetErrorCode() == vtkErrorCode::NoError; });
+  } catch (const BadInput&) {
+    // The error code says what went wrong more plainly than the pipeline's messages.
+    const unsigned long code = writer->GetErrorCode();
+    if (code == vtkErrorCode::OutOfDiskSpaceError) throw BadInput(path, "cannot write: No space left on device");
+    if (code != vtkErrorCode::NoError)
+      throw BadInput(path, std::string("cannot write: ") + vtkErrorCode::GetStringFromErrorCode(code));
+    throw;
+  }
+  checkNotEmpty(path);
 }
 
 // vtkPLYReader frees memory it never allocated when a file ends early, so the structure of a PLY file
@@ -630,6 +651,12 @@ void writeVtkSurface(const TriMesh& mesh, const std::string& path, bool binary) 
     writer->SetFileType(binary ? VTK_BINARY : VTK_ASCII);
     writer->AddComment("SPACE=LPS");
     writeChecked(writer.Get(), path);
+    // A PLY file cut short by a full disk is found by the reader's own walk of its structure.
+    try {
+      checkPlyStructure(path);
+    } catch (const BadInput& error) {
+      throw BadInput(path, "cannot write: the file written is incomplete (" + error.problem() + "); is the disk full?");
+    }
   } else if (ext == ".vtk") {
     vtkNew<vtkPolyDataWriter> writer;
     writer->SetInputData(data);

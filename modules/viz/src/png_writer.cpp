@@ -37,7 +37,8 @@ void writePng(const std::string& path, const RgbImage& image, const WriteOptions
     writer->SetFileName(temporary.c_str());
     writer->SetInputData(data);
     writer->Write();
-    if (writer->GetErrorCode() != 0 || !std::filesystem::exists(temporary))
+    std::error_code ec;
+    if (writer->GetErrorCode() != 0 || std::filesystem::file_size(temporary, ec) == 0 || ec)
       throw BadInput(path, "cannot write the PNG file");
   });
 }

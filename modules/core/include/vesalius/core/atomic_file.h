@@ -1,11 +1,29 @@
 // Writing outputs so that nothing is lost (DESIGN.md, "Nothing is lost").
 //
-// An output is written to a temporary file beside it and renamed over the target only when the write
-// succeeded; a failed write leaves no partial file. An existing output is kept unless `force`.
+// How an output is written by writeAtomically:
+//  1. Checks first: an existing output is kept unless `force`; a folder, device or pipe is never replaced;
+//     the output's folder must exist.
+//  2. The writer writes `<private folder>/<output name>`, where the private folder is made beside the output
+//     with mkdtemp (a fresh random name, mode 0700, created atomically). ITK and VTK open the path they are
+//     given themselves, so the temporary is not opened by us with O_EXCL; instead nobody else can create an
+//     entry in that folder, and a symlink planted at a guessable name is never followed. (Only root, or the
+//     same user, could swap the file under us; both could write the output directly anyway.)
+//  3. The temporary must then be a regular file, and it is fsynced, so a delayed write error (a full disk
+//     on a file system that allocates late) fails here. Each writer also checks that every byte it wrote
+//     reached the file; an empty file is a valid output for some formats, so emptiness is not checked here.
+//  4. It is renamed over the output (same file system, so atomic), the output's folder is fsynced, and the
+//     private folder is removed.
+//  5. A failed write removes the private folder with whatever it holds; a BadInput thrown by the writer
+//     that names the temporary is rethrown naming the output, and a file system error becomes a BadInput
+//     naming the output.
+//  6. While a private folder exists it is listed in a fixed process-wide table. installCleanupOnSignal(),
+//     called once by a program's main, makes SIGINT, SIGTERM and SIGHUP remove the listed folders before
+//     the process dies of the signal. The library installs no handler itself.
 #pragma once
 
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace vesalius {
 
@@ -13,11 +31,39 @@ struct WriteOptions {
   bool force = false;  // replace an existing output
 };
 
-// Calls `write(temporaryPath)`, then renames the temporary file to `path`. Throws UsageError if `path`
-// exists and !options.force; rethrows whatever `write` throws after removing the temporary file.
-// The temporary name keeps the extension of `path` (writers pick their format from it).
+// Calls `write(temporaryPath)`, then renames the temporary file to `path` (see above). Throws UsageError if
+// `path` exists and !options.force; rethrows whatever `write` throws after removing the temporary file.
+// The temporary has the same file name as `path` (writers pick their format from its extension).
 void writeAtomically(const std::string& path, const WriteOptions& options,
                      const std::function<void(const std::string& temporaryPath)>& write);
+
+// Writes `bytes` to a new file `path`, checking every write and the close; throws BadInput naming `path`
+// (inside writeAtomically the name is turned into the output's).
+void writeFileBytes(const std::string& path, std::string_view bytes);
+
+// Flushes `path` to the disk (fsync); throws BadInput naming `nameForErrors` on failure.
+void syncFile(const std::string& path, const std::string& nameForErrors);
+
+// A private folder (mkdtemp, mode 0700) beside `besidePath`, named after it and hidden. It is removed with
+// what it holds when this object is destroyed, and by the signal cleanup (see above) if the process is
+// interrupted first. Throws BadInput naming `besidePath` if it cannot be made.
+class TemporaryFolder {
+ public:
+  explicit TemporaryFolder(const std::string& besidePath);
+  ~TemporaryFolder();
+  TemporaryFolder(const TemporaryFolder&) = delete;
+  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int slot_ = -1;  // in the signal cleanup table, or -1 if the table was full
+};
+
+// Makes SIGINT, SIGTERM and SIGHUP remove every live TemporaryFolder, then die of the signal as they would
+// have. A signal the process ignores (nohup) stays ignored. Safe to call more than once.
+void installCleanupOnSignal();
 
 // Lower-case extension of a path including the dot, treating ".nii.gz", ".mrk.json" and ".seg.nrrd"
 // as one extension: "scan.nii.gz" -> ".nii.gz".

@@ -62,7 +62,8 @@ ScanInfo describeScan(const std::string& path, const ScanReadOptions& options = 
 LabelMap readLabelMap(const std::string& path, const std::string& tablePath = "");
 
 // Writes the labels (uint8 if every id is below 256, else uint16) and the table as the sidecar
-// labelTableSidecarPath(path), both atomically; neither is written if either exists and !options.force.
+// labelTableSidecarPath(path), both atomically; neither is written if either exists and !options.force,
+// and the labels are removed again if the table cannot be written.
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options = {});
 
 // "<stem>.tsv" beside a label map path: "seg/body.nii.gz" -> "seg/body.tsv".

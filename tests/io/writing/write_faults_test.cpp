@@ -1,0 +1,214 @@
+// Issue 32, item 1: a full disk. Each writer of io, given a file system with no room (or too little room)
+// for its output, must throw a BadInput naming the output and leave nothing behind: neither the output
+// nor a temporary. The file system is a 2 MB tmpfs the test mounts; without the right to mount one the
+// test is skipped.
+#include "vesalius/core/error.h"
+#include "vesalius/core/grid.h"
+#include "vesalius/core/label_map.h"
+#include "vesalius/core/markers.h"
+#include "vesalius/core/mesh.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/marker_io.h"
+#include "vesalius/io/mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace vesalius::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One writer: what it writes, the output's file name, and the call.
+struct Case {
+  std::string what, name;
+  std::function<void(const std::string& path)> write;
+};
+
+class FullDisk : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::path(VESALIUS_TEST_OUTPUT) / "tmpfs";
+    std::system(("umount '" + dir.string() + "' 2>/dev/null").c_str());  // left by an aborted run
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    if (std::system(("mount -t tmpfs -o size=2m tmpfs '" + dir.string() + "' 2>/dev/null").c_str()) != 0)
+      GTEST_SKIP() << "cannot mount a 2 MB tmpfs at " << dir.string()
+                   << " (needs root or CAP_SYS_ADMIN): the full-disk cases are not run";
+    mounted = true;
+  }
+  void TearDown() override {
+    if (mounted) std::system(("umount '" + dir.string() + "'").c_str());
+  }
+
+  // Fills the file system but for about `leaveFree` bytes: a reserve of that size is written first and
+  // removed once the filler has met ENOSPC.
+  void fill(std::size_t leaveFree) {
+    const std::string reserve = (dir / "reserve").string();
+    if (leaveFree > 0) writeUntilFull(reserve, leaveFree);
+    writeUntilFull((dir / "filler").string(), std::size_t(-1));
+    if (leaveFree > 0) fs::remove(reserve);
+  }
+
+  static void writeUntilFull(const std::string& path, std::size_t limit) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_GE(fd, 0);
+    std::vector<char> block(4096, 'f');
+    std::size_t written = 0;
+    while (written < limit) {
+      const ssize_t n = ::write(fd, block.data(), std::min(block.size(), limit - written));
+      if (n <= 0) break;
+      written += std::size_t(n);
+    }
+    ::close(fd);
+  }
+
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+    return names;
+  }
+
+  // Each case must throw BadInput naming its output (or, for a label map, its table) and leave only the filler.
+  void expectEachFails(const std::vector<Case>& cases, const char* situation) {
+    for (const Case& c : cases) {
+      const std::string path = (dir / c.name).string();
+      try {
+        c.write(path);
+        ADD_FAILURE() << c.what << " on a " << situation << " disk reported success";
+      } catch (const BadInput& error) {
+        const std::string message = error.what();
+        std::cout << situation << ", " << c.what << ": " << message << "\n";
+        const std::string tablePath = labelTableSidecarPath(path);
+        EXPECT_TRUE(message.rfind(path + ": ", 0) == 0 || message.rfind(tablePath + ": ", 0) == 0)
+            << c.what << ": the message does not start with the output's name: " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << c.what << ": more than one line";
+      } catch (const std::exception& error) {
+        ADD_FAILURE() << c.what << ": not a BadInput: " << error.what();
+      }
+      EXPECT_EQ(listing(), std::vector<std::string>{"filler"}) << c.what << " left a file behind";
+      for (const std::string& name : listing())
+        if (name != "filler") fs::remove_all(dir / name);  // so the next case is judged on its own
+    }
+  }
+
+  fs::path dir;
+  bool mounted = false;
+};
+
+// Random values, so compression cannot make them fit.
+Image noiseImage(int n) {
+  GridGeometry geometry;
+  geometry.size = Eigen::Vector3i(n, n, n);
+  Image image(geometry);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> value(-1000, 1000);
+  for (float& v : image.values) v = value(random);
+  return image;
+}
+
+LabelMap noiseLabels(int n) {
+  GridGeometry geometry;
+  geometry.size = Eigen::Vector3i(n, n, n);
+  LabelMap map;
+  map.labels = Grid<Label>(geometry);
+  std::mt19937 random(8);
+  std::uniform_int_distribution<int> label(0, 255);
+  for (Label& v : map.labels.values) v = Label(label(random));
+  map.table.add({1, "skin", {{200, 150, 120}}});
+  return map;
+}
+
+// A wavy n by n sheet of triangles.
+TriMesh sheet(int n) {
+  TriMesh mesh;
+  mesh.V.resize(n * n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) mesh.V.row(i * n + j) << 0.37 * i, 0.41 * j, std::sin(0.1 * i) * std::cos(0.13 * j);
+  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j, b = a + 1, c = a + n, d = c + 1;
+      mesh.F.row(f++) << a, b, d;
+      mesh.F.row(f++) << a, d, c;
+    }
+  return mesh;
+}
+
+MarkerSet manyMarkers(int count) {
+  MarkerSet set;
+  set.name = "icp";
+  for (int i = 0; i < count; ++i) {
+    Marker m;
+    m.label = "icp-" + std::to_string(i);
+    m.kind = MarkerKind::IcpMarker;
+    m.position = Eigen::Vector3d(0.123456789 * i, -1.5 * i, 3.25 + i);
+    m.description = "a marker on the liver boundary, written to fill the disk";
+    set.markers.push_back(m);
+  }
+  return set;
+}
+
+std::vector<Case> writers() {
+  // Each output is far larger than the room left on the nearly full disk.
+  static const Image image = noiseImage(64);           // 1 MB of float32 noise
+  static const LabelMap labels = noiseLabels(48);      // 110 kB of uint8 noise
+  static const TriMesh mesh = sheet(120);              // 14,400 vertices, 28,322 triangles
+  static const MarkerSet markers = manyMarkers(2000);  // about 1 MB as markups JSON
+  return {
+      {"NIfTI scan (writeScan)", "th.nii.gz", [](const std::string& p) { writeScan(p, image); }},
+      {"MetaImage scan (writeScan)", "scan.mha", [](const std::string& p) { writeScan(p, image); }},
+      {"NRRD scan (writeScan)", "scan.nrrd", [](const std::string& p) { writeScan(p, image); }},
+      {"uncompressed NIfTI scan (writeScan)", "scan.nii", [](const std::string& p) { writeScan(p, image); }},
+      {"NIfTI label map (writeLabelMap)", "labels.nii.gz", [](const std::string& p) { writeLabelMap(p, labels); }},
+      {"PLY mesh (writeTriMesh)", "skin.ply", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"ASCII PLY mesh (writeTriMesh)", "skin-ascii.ply",
+       [](const std::string& p) {
+         MeshWriteOptions options;
+         options.binary = false;
+         writeTriMesh(p, mesh, options);
+       }},
+      {"OBJ mesh (writeTriMesh)", "skin.obj", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"VTP mesh (writeTriMesh)", "skin.vtp", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"markups (writeMarkers)", "icp.mrk.json", [](const std::string& p) { writeMarkers(p, markers); }},
+      {"fcsv markers (writeMarkers)", "icp.fcsv", [](const std::string& p) { writeMarkers(p, markers); }},
+  };
+}
+
+TEST_F(FullDisk, EveryWriterFailsCleanlyOnAFullDisk) {
+  fill(0);
+  expectEachFails(writers(), "full");
+}
+
+// Room for the headers but not the data: the case that renamed a truncated NIfTI into place.
+TEST_F(FullDisk, EveryWriterFailsCleanlyOnANearlyFullDisk) {
+  fill(64 * 1024);
+  expectEachFails(writers(), "nearly full");
+}
+
+// The same writers succeed once there is room, so the failures above are the disk's.
+TEST_F(FullDisk, TheSameWritersSucceedWithRoom) {
+  for (const Case& c : writers()) {
+    const std::string path = (dir / c.name).string();
+    EXPECT_NO_THROW(c.write(path)) << c.what;
+    EXPECT_TRUE(fs::exists(path)) << c.what;
+    fs::remove(path);
+    fs::remove(labelTableSidecarPath(path));
+  }
+  EXPECT_TRUE(listing().empty());
+}
+
+}  // namespace
+}  // namespace vesalius::io
