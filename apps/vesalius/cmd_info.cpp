@@ -1,5 +1,6 @@
 // vesalius info: what a scan, label table, mesh, marker, motion or skeleton file holds.
 #include "common.h"
+#include "posing_session.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/dicom_series.h"
@@ -82,7 +83,7 @@ void printMesh(const InfoOptions& o, io::MeshKind kind) {
 }
 
 void printMotion(const InfoOptions& o) {
-  const Motion motion = io::readBvh(o.file);
+  const Motion motion = readMotion(o.file);
   const double rate = 1.0 / motion.frameTime;
   std::cout << o.file << ": motion (BVH)\n"
             << "  joints       " << motion.skeleton.joints.size() << " (root '"

@@ -8,6 +8,7 @@
 #include "bone_mesh_labels.h"
 #include "common.h"
 #include "label_regions.h"
+#include "posing_session.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/body_axes.h"
@@ -66,7 +67,7 @@ TriMesh toLps(TriMesh mesh, bool makeHuman) {
 
 Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
   if (fileExtension(o.skeleton) == ".bvh") {
-    const Skeleton s = io::readBvh(o.skeleton).skeleton;
+    const Skeleton s = readMotion(o.skeleton).skeleton;
     return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
   }
   if (fileExtension(o.skeleton) != ".mhskel") throw UsageError("rig: --skeleton must be a .mhskel or .bvh file");

@@ -12,6 +12,7 @@
 #include "vesalius/posing/skeleton_pose.h"
 
 #include <filesystem>
+#include <iostream>
 
 namespace vesalius::cli {
 
@@ -37,9 +38,16 @@ posing::JointMap motionJointMap(const std::string& mapPath, const Skeleton& sour
   return shared.pairs.size() * 2 >= rig.joints.size() ? shared : posing::cmuToMakeHumanJointMap();
 }
 
+Motion readMotion(const std::string& bvhPath) {
+  std::string warning;
+  Motion motion = io::readBvh(bvhPath, &warning);
+  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
+  return motion;
+}
+
 RetargetedMotion::RetargetedMotion(const std::string& bvhPath, const std::string& mapPath, bool motionLps,
                                    const Skeleton& rig)
-    : motion_(io::readBvh(bvhPath)),
+    : motion_(readMotion(bvhPath)),
       retargeter_(motion_.skeleton, rig, motionJointMap(mapPath, motion_.skeleton, rig), retargetOptions(motionLps, motion_),
                   mapPath.empty() ? "default joint map" : mapPath) {}
 

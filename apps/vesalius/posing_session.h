@@ -46,6 +46,10 @@ class RetargetedMotion {
   posing::Retargeter retargeter_;
 };
 
+// A BVH file read for a command: a miscounted frame list is read as io::readBvh tolerates it, with its
+// warning on stderr.
+Motion readMotion(const std::string& bvhPath);
+
 // The methods PosingSession::skinTets takes.
 bool isSkinningMethod(const std::string& method);  // lbs, dqs, cor or fem
 

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 namespace vesalius::test {
 namespace {
@@ -85,6 +86,18 @@ INSTANTIATE_TEST_SUITE_P(TestData, BadInfo,
                                            BadCase{"mrk_json_without_schema", "markers_no_schema.mrk.json"},
                                            BadCase{"bvh_missing_channel", "bvh_missing_channel.bvh"}),
                          [](const auto& info) { return info.param.name; });
+
+// A motion whose frame lines outnumber its "Frames:" line is read with the declared count and one
+// warning line on stderr naming the file.
+TEST(Cli, MiscountedMotionIsReadWithOneWarningLine) {
+  const std::string path = kData + "/motion/bvh_extra_frame_line.bvh";
+  const CommandResult r = runVesalius({"info", path});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectContains(r.out, "frames       2 at 10");
+  expectContains(r.err, "warning: " + path + ": line 21: 1 frame line beyond 'Frames: 2' not read");
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
 
 TEST(Cli, DicomFolderWithTwoSeriesListsThem) {
   const CommandResult r = runVesalius({"info", kData + "/bad/dicom_two_series"});

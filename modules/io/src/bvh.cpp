@@ -148,40 +148,57 @@ int readMotionHeader(Tokens& t, Motion& motion, std::size_t textSize) {
   return int(frames);
 }
 
-void readFrames(LineReader& reader, Motion& motion, int frames) {
+// Exported motion often disagrees with its own "Frames:" line by a frame or two. Frame lines beyond the
+// declared count are not read (the declared count is kept); fewer lines than declared give the frames
+// present. Either way `warning` gets one line saying so; a frame line with a wrong value count is still
+// refused, since it is a broken frame, not a miscount.
+void readFrames(LineReader& reader, Motion& motion, int frames, std::string* warning) {
   int columns = 0;
   for (const auto& c : motion.channels) columns += int(c.size());
   motion.values.setZero(frames, columns);
   std::string_view line;
-  int frame = 0;
+  int frame = 0, extra = 0, firstExtraLine = 0;
   while (reader.next(line)) {
     const std::vector<std::string_view> tokens = splitWhitespace(line);
     if (tokens.empty()) continue;
-    if (frame == frames) reader.fail("more frame lines than 'Frames: " + std::to_string(frames) + "'");
+    if (frame == frames) {
+      if (extra++ == 0) firstExtraLine = reader.lineNumber();
+      continue;
+    }
     if (int(tokens.size()) != columns)
       reader.fail("frame " + std::to_string(frame + 1) + " has " + std::to_string(tokens.size()) +
                   " values, the hierarchy has " + std::to_string(columns) + " channels");
     for (int c = 0; c < columns; ++c) motion.values(frame, c) = parseDouble(tokens[std::size_t(c)], reader, "value");
     ++frame;
   }
-  if (frame < frames && columns > 0)
-    reader.fail("the file ends after " + std::to_string(frame) + " of " + std::to_string(frames) + " frames");
+  const std::string declared = "'Frames: " + std::to_string(frames) + "'";
+  std::string note;
+  if (extra > 0)
+    note = reader.source() + ": line " + std::to_string(firstExtraLine) + ": " + std::to_string(extra) +
+           " frame line" + (extra > 1 ? "s" : "") + " beyond " + declared + " not read";
+  if (frame < frames && columns > 0) {
+    motion.values.conservativeResize(frame, columns);
+    note = reader.source() + ": " + std::to_string(frame) + " frame lines for " + declared + "; the " +
+           std::to_string(frame) + " present are read";
+  }
+  if (!note.empty() && warning) *warning = note;
 }
 
 }  // namespace
 
-Motion parseBvh(std::string_view text, const std::string& source) {
+Motion parseBvh(std::string_view text, const std::string& source, std::string* warning) {
+  if (warning) warning->clear();
   LineReader reader(text, source);
   Tokens tokens(reader);
   Motion motion;
   readHierarchy(tokens, motion);
   const int frames = readMotionHeader(tokens, motion, text.size());
-  readFrames(reader, motion, frames);
+  readFrames(reader, motion, frames, warning);
   motion.skeleton.validate(source);
   return motion;
 }
 
-Motion readBvh(const std::string& path) { return parseBvh(readTextFile(path), path); }
+Motion readBvh(const std::string& path, std::string* warning) { return parseBvh(readTextFile(path), path, warning); }
 
 // ---- writing ----
 

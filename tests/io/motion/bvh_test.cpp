@@ -1,12 +1,14 @@
 // BVH: the CMU and MakeHuman motions in testdata, exact round trips, and the bad files in testdata/bad.
 #include "vesalius/core/error.h"
 #include "vesalius/io/motion_io.h"
+#include "vesalius/io/text_file.h"
 
 #include "expect_bad_input.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
 
 namespace vesalius::io {
 namespace {
@@ -125,16 +127,53 @@ void expectBadInput(const std::string& file, const std::string& fragment) {
 TEST(Bvh, BadFilesAreOneLineBadInputWithLineNumbers) {
   expectBadInput("bvh_missing_channel.bvh", "line 20: frame 2 has 8 values, the hierarchy has 9 channels");
   expectBadInput("bvh_non_numeric.bvh", "line 20: bad value 'x'");
-  expectBadInput("bvh_too_few_frames.bvh", "line 20: the file ends after 2 of 3 frames");
   expectBadInput("bvh_no_motion.bvh", "line 15: no MOTION section");
   expectBadInput("bvh_channels7.bvh", "line 9: CHANNELS 7");
   expectBadInput("bvh_unknown_channel.bvh", "line 9: unknown channel 'Wrotation'");
   expectBadInput("bvh_does_not_exist.bvh", "cannot open");
   EXPECT_THROW(parseBvh("", "empty"), BadInput);
-  EXPECT_THROW(parseBvh("HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\n}\nMOTION\nFrames: 1\n"
-                        "Frame Time: 0.1\n1\n2\n",
-                        "extra"),
-               BadInput);
+}
+
+// Exported motion whose frame lines disagree with its "Frames:" line is read, with one warning line: the
+// declared count kept when there are more lines, the lines present when fewer. Made from the real CMU
+// motion (one frame line repeated, three removed) and from the two small files in testdata/motion.
+TEST(Bvh, MiscountedFrameListsAreReadWithOneWarning) {
+  const std::string path = kData + "/motion/01_01.bvh";
+  const std::string text = readTextFile(path);
+  const Motion exact = parseBvh(text, path);
+  std::string trimmed = text;
+  while (!trimmed.empty() && (trimmed.back() == '\n' || trimmed.back() == '\r')) trimmed.pop_back();
+  const std::string lastLine = trimmed.substr(trimmed.rfind('\n') + 1);
+
+  std::string warning = "stale";
+  const Motion extra = parseBvh(trimmed + "\n" + lastLine + "\n", "extra.bvh", &warning);
+  std::cout << "one line more: " << warning << '\n';
+  EXPECT_EQ(extra.frameCount(), 2752);
+  EXPECT_EQ(extra.values, exact.values);
+  EXPECT_NE(warning.find("extra.bvh: line "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("1 frame line beyond 'Frames: 2752' not read"), std::string::npos) << warning;
+  EXPECT_EQ(warning.find('\n'), std::string::npos);
+
+  std::string shorter = trimmed;
+  for (int i = 0; i < 3; ++i) shorter.erase(shorter.rfind('\n'));
+  const Motion fewer = parseBvh(shorter + "\n", "fewer.bvh", &warning);
+  std::cout << "three lines fewer: " << warning << '\n';
+  ASSERT_EQ(fewer.frameCount(), 2749);
+  EXPECT_EQ(fewer.values, exact.values.topRows(2749));
+  EXPECT_NE(warning.find("fewer.bvh: 2749 frame lines for 'Frames: 2752'; the 2749 present are read"), std::string::npos)
+      << warning;
+
+  parseBvh(text, path, &warning);
+  EXPECT_TRUE(warning.empty()) << "an exact file gives no warning: " << warning;
+
+  const Motion small = readBvh(kData + "/motion/bvh_extra_frame_line.bvh", &warning);
+  EXPECT_EQ(small.frameCount(), 2);
+  EXPECT_EQ(small.values(1, 8), 10);
+  EXPECT_NE(warning.find("line 21: 1 frame line beyond 'Frames: 2' not read"), std::string::npos) << warning;
+  EXPECT_EQ(readBvh(kData + "/motion/bvh_fewer_frame_lines.bvh", &warning).frameCount(), 2);
+  EXPECT_NE(warning.find("2 frame lines for 'Frames: 3'"), std::string::npos) << warning;
+  // A broken frame among the declared ones is still refused: the count of its values is not a miscount.
+  EXPECT_THROW(parseBvh(shorter + "\n1 2 3\n", "broken.bvh"), BadInput);
 }
 
 }  // namespace

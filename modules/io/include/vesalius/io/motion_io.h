@@ -9,7 +9,11 @@
 //
 // Bad input is BadInput "<source>: line N: <problem>": a missing HIERARCHY or MOTION, CHANNELS with a
 // count outside 0..6, an unknown or repeated channel name, a frame line with too few or too many values,
-// fewer frame lines than "Frames:", a non-numeric or non-finite value.
+// a non-numeric or non-finite value.
+//
+// Tolerated, as exported motion often has it: a count of frame lines other than "Frames:" says. Lines
+// beyond the declared count are not read; with fewer lines, the frames present are. `warning`, if given,
+// then gets one line naming the source and what was done (it is cleared otherwise); a command prints it.
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
@@ -20,8 +24,8 @@
 
 namespace vesalius::io {
 
-Motion parseBvh(std::string_view text, const std::string& source);
-Motion readBvh(const std::string& path);
+Motion parseBvh(std::string_view text, const std::string& source, std::string* warning = nullptr);
+Motion readBvh(const std::string& path, std::string* warning = nullptr);
 
 // Same hierarchy, channels and values; numbers in the shortest form that reads back exactly, so
 // read -> write -> read gives identical values. A joint with no children, or with a non-zero tail, gets
