@@ -192,7 +192,8 @@ TEST_F(FullDisk, EveryWriterFailsCleanlyOnAFullDisk) {
   expectEachFails(writers(), "full");
 }
 
-// Room for the headers but not the data: the case that renamed a truncated NIfTI into place.
+// Room for the headers but not the data: a writer that ignored its failed writes would leave a truncated
+// file that looks whole.
 TEST_F(FullDisk, EveryWriterFailsCleanlyOnANearlyFullDisk) {
   fill(64 * 1024);
   expectEachFails(writers(), "nearly full");
