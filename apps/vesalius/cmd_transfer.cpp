@@ -226,13 +226,9 @@ void renderPng(const ReferenceAnatomy& anatomy, const std::vector<MatrixX3d>& ti
   }
   std::vector<viz::SurfaceLayer> layers;
   for (std::size_t t = 0; t < meshes.size(); ++t) {
-    const TissueKind kind = anatomy.tissues[t].kind;
-    const viz::Rgb color = kind == TissueKind::Bone     ? viz::Rgb{235, 225, 200}
-                           : kind == TissueKind::Muscle ? viz::Rgb{190, 60, 55}
-                                                        : viz::Rgb{150, 100, 80};
-    layers.push_back({&meshes[t], color, 1.0});
+    layers.push_back({&meshes[t], tissueKindColour(anatomy.tissues[t].kind), 1.0});
   }
-  layers.push_back({&skin, viz::Rgb{230, 190, 160}, 0.2});
+  layers.push_back({&skin, kSkinColour, 0.2});
   viz::SurfaceRenderOptions options;
   options.write = write;
   viz::writeSurfacesPng(layers, path, options);

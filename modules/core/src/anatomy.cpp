@@ -17,6 +17,16 @@ const char* tissueKindName(TissueKind kind) {
   return "other";
 }
 
+DisplayColour tissueKindColour(TissueKind kind) {
+  switch (kind) {
+    case TissueKind::Bone: return {235, 225, 200};
+    case TissueKind::Muscle: return {190, 60, 55};
+    case TissueKind::Organ:
+    case TissueKind::Other: break;
+  }
+  return {150, 100, 80};
+}
+
 TissueKind tissueKindFromName(const std::string& name) {
   for (TissueKind kind : {TissueKind::Bone, TissueKind::Muscle, TissueKind::Organ, TissueKind::Other})
     if (name == tissueKindName(kind)) return kind;

@@ -6,6 +6,7 @@
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
+#include "vesalius/io/gltf.h"
 #include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/text_file.h"
 
@@ -26,7 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kSurfaceExtensions = "(.stl, .obj, .ply, .vtk, .vtp)";
+constexpr const char* kSurfaceExtensions = "(.stl, .obj, .ply, .vtk, .vtp, .glb)";
 constexpr const char* kTetExtensions = "(.vtu, .vtk, .node, .ele, .mesh, .msh)";
 
 // The dataset type of a VTK legacy file ("polydata", "unstructured_grid", ...), from its header: a
@@ -111,7 +112,7 @@ std::string namesText(const char* what, const std::vector<std::string>& names) {
 
 std::optional<MeshKind> meshFileKind(const std::string& path) {
   const std::string ext = fileExtension(path);
-  if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".vtp") return MeshKind::kSurface;
+  if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".vtp" || ext == ".glb") return MeshKind::kSurface;
   if (ext == ".vtu" || ext == ".node" || ext == ".ele" || ext == ".mesh" || ext == ".msh")
     return MeshKind::kTetrahedral;
   if (ext != ".vtk") return std::nullopt;
@@ -127,6 +128,22 @@ TriMesh readTriMesh(const std::string& path) {
   if (ext == ".obj") return parseObj(readTextFile(path), path);
   if (ext == ".vtk") requireDataset(path, "polydata", "polydata (a surface)");
   if (ext == ".ply" || ext == ".vtk" || ext == ".vtp") return readVtkSurface(path);
+  if (ext == ".glb") {
+    // A model of several nodes is read as one surface holding all of them (what `info` describes).
+    const std::vector<GltfMesh> nodes = readGlb(path);
+    TriMesh all;
+    Eigen::Index vertices = 0, triangles = 0;
+    for (const GltfMesh& node : nodes) vertices += node.mesh.V.rows(), triangles += node.mesh.F.rows();
+    all.V.resize(vertices, 3);
+    all.F.resize(triangles, 3);
+    vertices = triangles = 0;
+    for (const GltfMesh& node : nodes) {
+      all.V.middleRows(vertices, node.mesh.V.rows()) = node.mesh.V;
+      all.F.middleRows(triangles, node.mesh.F.rows()) = node.mesh.F.array() + int(vertices);
+      vertices += node.mesh.V.rows(), triangles += node.mesh.F.rows();
+    }
+    return all;
+  }
   throw BadInput(path, "not a surface mesh extension " + std::string(kSurfaceExtensions));
 }
 
@@ -150,6 +167,8 @@ void writeTriMesh(const std::string& path, const TriMesh& mesh, const MeshWriteO
   else if (ext == ".ply" || ext == ".vtk" || ext == ".vtp")
     writeAtomically(path, options,
                     [&](const std::string& temporary) { writeVtkSurface(mesh, temporary, options.binary); });
+  else if (ext == ".glb")
+    writeGlb(path, {{fs::path(path).stem().string(), &mesh, {0.8, 0.8, 0.8, 1.0}}}, options);
   else
     throw UsageError(path + ": not a surface mesh extension " + kSurfaceExtensions);
 }

@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,12 @@ enum class TissueKind { Bone, Muscle, Organ, Other };
 const char* tissueKindName(TissueKind kind);
 // Throws UsageError for a name other than bone, muscle, organ, other.
 TissueKind tissueKindFromName(const std::string& name);
+
+// Display colours (sRGB 0..255) shared by every picture and model file we make of an anatomy, so a
+// tissue looks the same in a PNG and in a glTF viewer: bone ivory, muscle red, organ and other brown.
+using DisplayColour = std::array<std::uint8_t, 3>;
+DisplayColour tissueKindColour(TissueKind kind);
+inline constexpr DisplayColour kSkinColour{230, 190, 160};
 
 struct ReferenceTissue {
   std::string name;

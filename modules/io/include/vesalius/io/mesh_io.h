@@ -1,7 +1,7 @@
 // Reading and writing surface (TriMesh) and tetrahedral (TetMesh) mesh files, chosen by extension,
 // and the summary `vesalius info` prints for a mesh.
 //
-//   surfaces  .stl (ASCII or binary)  .obj  .ply  .vtk (legacy polydata)  .vtp
+//   surfaces  .stl (ASCII or binary)  .obj  .ply  .vtk (legacy polydata)  .vtp  .glb (binary glTF, gltf.h)
 //   tets      .vtu  .vtk (legacy unstructured grid)  .node/.ele (TetGen, with .face)  .mesh (MEDIT)  .msh (Gmsh)
 //
 // Readers return LPS millimetres, validated (TriMesh/TetMesh::validate), tets positively oriented; any
@@ -19,6 +19,7 @@
 // #F by 6 cell array "corner_uv" (u0 v0 u1 v1 u2 v2) instead, which the reader turns back into UV/FUV.
 // Polygons are fan-triangulated; triangle strips and, in tet meshes, any cell that is not a tetrahedron
 // are rejected. VTU/VTK tet meshes carry V, T and their attributes; F is not written (tetBoundary gives it).
+// .glb holds V and F only: written as one grey node named after the file, read as all its nodes in one mesh.
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
