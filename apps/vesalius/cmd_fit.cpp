@@ -26,7 +26,7 @@
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/closed_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
-#include "vesalius/meshing/decimate_surface.h"
+#include "vesalius/meshing/tet_budget.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/viz/slice_overlay.h"
@@ -53,9 +53,6 @@ namespace fs = std::filesystem;
 
 constexpr double kIcpBinMm = 0.25;       // Fig. 16 histogram bins
 constexpr double kDihedralBinDeg = 5.0;  // Fig. 17 histogram bins
-// A refit's surface without --template-faces: the CT liver's fitted boundary (2,802 triangles) at 1,500
-// gives about 31k tets and ends at 0.33 mm; at 800, 17k tets, the refit stalls at 1.7 mm (plastic-fit.md).
-constexpr int kRefitFaces = 1500;
 
 // ---- Options ----
 
@@ -138,7 +135,17 @@ Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   if (std::optional<TriMesh> closed = closedTemplate(o, *t.surface, report)) t.surface = std::move(closed);
   meshing::TetrahedralizeOptions options;
   options.targetTets = o.targetTets;
-  t.tets = meshing::tetrahedralize(meshing::decimateSurface(*t.surface, o.templateFaces), options, o.templ);
+  // TetGen meshes a coarsened surface (--template-faces, or as the tet target allows); the template's own
+  // surface is carried by the fit to --surface-out.
+  if (o.templateFaces > 0) {
+    const TriMesh coarse = meshing::coarsenedSurface(*t.surface, o.templateFaces);
+    t.tets = meshing::tetrahedralize(coarse, options, o.templ);
+    report.metric("tetrahedralized_faces", coarse.F.rows());
+  } else {
+    meshing::BudgetedTets budgeted = meshing::tetrahedralizeWithinBudget(*t.surface, options, o.templ);
+    t.tets = std::move(budgeted.tets);
+    report.metric("tetrahedralized_faces", budgeted.surfaceFaces);
+  }
   return t;
 }
 
@@ -463,21 +470,16 @@ fit::FitResult solve(const FitCommandOptions& o, const TetMesh& templ, const Sta
   return fit::fitPlasticStrains(templ, start.x0, start.s0, in.points, o.solver, &progress);
 }
 
-// A refit's rest mesh (fit/refit.h): the fitted boundary decimated to --template-faces, or to kRefitFaces
-// without it (TetGen keeps every triangle, and the boundary of a fine template is fine), closed by its
-// winding number instead where it or its decimation crosses itself (a fitted organ can touch itself in a
-// cleft it was pulled into), then tetrahedralized.
+// A refit's rest mesh (fit/refit.h): the fitted boundary coarsened as the tet target allows
+// (meshing/tet_budget.h), or decimated to --template-faces; either is closed by its winding number instead
+// where it crosses itself (a fitted organ can touch itself in a cleft it was pulled into).
 TetMesh refitMesh(const FitCommandOptions& o, const TriMesh& fittedBoundary) {
-  const int faces = o.templateFaces > 0 ? o.templateFaces : kRefitFaces;
-  TriMesh surface = meshing::decimateSurface(fittedBoundary, faces);
-  if (!selfIntersections(surface.V, surface.F).empty()) {
-    meshing::ClosedSurfaceOptions closing;
-    closing.targetFaces = faces;
-    surface = meshing::closedSurface(fittedBoundary, closing);
-  }
   meshing::TetrahedralizeOptions options;
   options.targetTets = o.targetTets;
-  return meshing::tetrahedralize(surface, options, o.out + " (a refit's rest shape)");
+  const std::string source = o.out + " (a refit's rest shape)";
+  if (o.templateFaces > 0)
+    return meshing::tetrahedralize(meshing::coarsenedSurface(fittedBoundary, o.templateFaces), options, source);
+  return meshing::tetrahedralizeWithinBudget(fittedBoundary, options, source).tets;
 }
 
 // The fit, then its refits (plastic only): the rounds kept, the template's first.
@@ -720,21 +722,23 @@ void addFitCommand(CLI::App& app) {
                   "beta of seed 002 eq. 3 per mm^2: how much the attachments' elastic work counts")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--target-tets", o->targetTets, "About this many tets for a surface template")
-      ->check(CLI::Range(100L, 10000000L))
+  cmd->add_option("--target-tets", o->targetTets,
+                  "About this many tets for a surface template (within twice it: a surface finer than that allows "
+                  "is coarsened for TetGen, and its own triangles are carried to --surface-out)")
+      ->check(CLI::Range(100L, 5000000L))
       ->capture_default_str();
   cmd->add_option("--template-faces", o->templateFaces,
-                  "Decimate a surface template to about this many triangles before tetrahedralizing it (TetGen "
-                  "keeps every surface triangle, so a fine surface means many tets); the full surface is still "
-                  "carried to --surface-out. 0 keeps them all")
+                  "Coarsen a surface template to about this many triangles before tetrahedralizing it instead of "
+                  "as --target-tets allows; the full surface is still carried to --surface-out. 0: as the target "
+                  "allows")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   cmd->add_option("--refits", o->refit.refits,
-                  "Fit again up to this many times, each from the fitted shape tetrahedralized afresh (at "
-                  "--template-faces, or 1500 triangles), while a marker is farther than --max-icp-error: for a "
-                  "template far from the organ, whose first fit crushes tets and stalls (the SOFA liver on a CT: "
-                  "2.2 mm, then 0.04 mm). --out and --surface-out then hold the last refit's tets and their "
-                  "boundary; --embed-out is carried through every round (smoothly through the refits)")
+                  "Fit again up to this many times, each from the fitted shape tetrahedralized afresh (about "
+                  "--target-tets tets, or at --template-faces), while a marker is farther than --max-icp-error: "
+                  "for a template far from the organ, whose first fit crushes its tets and stalls. --out and "
+                  "--surface-out then hold the last refit's tets and their boundary; --embed-out is carried "
+                  "through every round (smoothly through the refits)")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
   cmd->add_option("--refit-iterations", o->refit.icpIterations, "Most ICP iterations of each refit")

@@ -19,7 +19,7 @@ struct FitCommandOptions {
   bool unattached = false;
   std::string method = "plastic", init = "similarity";
   long targetTets = 20000;
-  int templateFaces = 0;  // decimate a surface template to this many triangles first; 0 keeps them all
+  int templateFaces = 0;  // coarsen a surface template to this many triangles first; 0: as targetTets allows
   double window = 400, level = 40;
   fit::FitOptions solver;
   fit::RefitOptions refit;  // refits: 0 is seed 002's fit alone

@@ -7,6 +7,7 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/tet_budget.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/segmentation/label_resample.h"
@@ -122,7 +123,18 @@ void runTetmesh(const TetmeshOptions& o) {
     const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, progress);
     regionCount = regions.size();
     auto timer = report.time("tetrahedralize");
-    mesh = meshing::tetrahedralizeRegions(regions, o.tet);
+    if (regions.size() == 1 && o.tet.targetTets > 0 && !o.tet.keepSurface) {
+      // One surface to a tet target: a fine surface is coarsened first so that the target holds.
+      meshing::BudgetedTets budgeted = meshing::tetrahedralizeWithinBudget(regions[0].surface, o.tet, regions[0].name);
+      mesh = std::move(budgeted.tets);
+      mesh.tetAttributes.integer[kLabel].setConstant(regions[0].label);
+      report.metric("tetrahedralized_faces", budgeted.surfaceFaces);
+      if (budgeted.coarsenings > 0)
+        std::cout << regions[0].name << ": " << regions[0].surface.F.rows() << " triangles coarsened to "
+                  << budgeted.surfaceFaces << " for about " << o.tet.targetTets << " tets\n";
+    } else {
+      mesh = meshing::tetrahedralizeRegions(regions, o.tet);
+    }
   }
   io::writeTetMesh(o.out, mesh, io::MeshWriteOptions{o.common.writeOptions()});
   report.output("tets", o.out);
@@ -161,7 +173,12 @@ void addTetmeshCommand(CLI::App& app) {
   cmd->add_option("--min-dihedral", o->tet.minDihedral, "Smallest dihedral angle aimed for, degrees")
       ->capture_default_str();
   cmd->add_option("--max-volume", o->tet.maxVolume, "Largest tet volume, mm^3 (0: no bound)");
-  cmd->add_option("--target-tets", o->tet.targetTets, "About this many tets (sets the volume bound)");
+  cmd->add_option("--target-tets", o->tet.targetTets,
+                  "About this many tets (sets the volume bound; one surface finer than that allows is coarsened "
+                  "first, unless --keep-surface)");
+  cmd->add_option("--tet-budget", o->tet.maxTets,
+                  "Most tets TetGen may make: bounds that need more are refused, a run that reaches it is stopped")
+      ->capture_default_str();
   cmd->add_flag("--keep-surface", o->tet.keepSurface, "Add no points on the surfaces (TetGen -Y)");
   addCommonOptions(*cmd, o->common);
   cmd->footer(

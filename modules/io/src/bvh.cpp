@@ -6,10 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <cstring>
-#include <fstream>
 
 namespace vesalius::io {
 
@@ -290,11 +287,7 @@ std::string formatBvh(const Motion& motion) {
 
 void writeBvh(const std::string& path, const Motion& motion, const WriteOptions& options) {
   const std::string text = formatBvh(motion);
-  writeAtomically(path, options, [&](const std::string& temporaryPath) {
-    std::ofstream out(temporaryPath, std::ios::binary);
-    if (out) out.write(text.data(), std::streamsize(text.size()));
-    if (!out) throw BadInput(temporaryPath, std::string("cannot write: ") + std::strerror(errno));
-  });
+  writeAtomically(path, options, [&](const std::string& temporaryPath) { writeFileBytes(temporaryPath, text); });
 }
 
 }  // namespace vesalius::io

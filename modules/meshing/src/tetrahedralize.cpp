@@ -11,6 +11,7 @@
 
 #include <tetgen.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -79,6 +80,12 @@ void checkCrossings(const std::vector<RegionSurface>& regions, const Combined& c
                                               "); surfaces must be nested or apart");
 }
 
+// Most points TetGen may add (see the header).
+long pointBudget(const TetrahedralizeOptions& o) {
+  const long budget = o.maxTets / 5;
+  return o.targetTets > 0 ? std::min(budget, 2 * o.targetTets + 50'000) : budget;
+}
+
 std::string switches(const TetrahedralizeOptions& o, double maxVolume) {
   std::ostringstream s;
   s << "pzQA";  // PLC input, 0-based, quiet, region attributes
@@ -86,6 +93,7 @@ std::string switches(const TetrahedralizeOptions& o, double maxVolume) {
   if (maxVolume > 0) s << std::fixed << std::setprecision(9) << "a" << maxVolume;
   s << "O" << o.optimizationLevel << "o/" << o.maxDihedral;
   if (o.keepSurface) s << "Y";
+  s << "S" << pointBudget(o);
   return s.str();
 }
 
@@ -146,50 +154,92 @@ TetMesh convertOutput(const tetgenio& out, const std::vector<int>& labels) {
   return mesh;
 }
 
-TetMesh runTetgen(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
-                  const std::string& flags) {
+// A TetGen run's tets, and whether it used up its point budget (and so stopped short of its bounds).
+struct TetgenRun {
+  TetMesh tets;
+  bool budgetUsed = false;
+};
+
+TetgenRun runTetgen(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
+                    const TetrahedralizeOptions& options, double maxVolume) {
   tetgenio in, out;
   fillInput(all, seeds, in);
-  std::string buffer = flags;
+  std::string buffer = switches(options, maxVolume);
   try {
     ::tetrahedralize(buffer.data(), &in, &out);
   } catch (int code) {  // the library's own terminatetetgen, should ours not be the one linked
     throw NumericalFailure("TetGen failed: " + tetgenErrorText(code));
   }
-  return convertOutput(out, labels);
+  return {convertOutput(out, labels), long(out.numberofpoints) - long(in.numberofpoints) >= pointBudget(options)};
 }
 
-TetMesh mesh(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
-             const TetrahedralizeOptions& options, double maxVolume) {
-  TetMesh result = runTetgen(all, seeds, labels, switches(options, maxVolume));
-  if (options.radiusEdge > 0) improveDihedrals(result, options.minDihedral, maxVolume);
-  return result;
+TetgenRun mesh(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
+               const TetrahedralizeOptions& options, double maxVolume) {
+  TetgenRun run = runTetgen(all, seeds, labels, options, maxVolume);
+  if (options.radiusEdge > 0 && !run.budgetUsed) improveDihedrals(run.tets, options.minDihedral, maxVolume);
+  return run;
+}
+
+std::string count(double n) {
+  std::ostringstream s;
+  s << std::setprecision(3) << n;
+  return s.str();
 }
 
 void checkOptions(const TetrahedralizeOptions& options) {
   if (options.radiusEdge < 0 || options.minDihedral < 0 || options.minDihedral >= 70 || options.maxVolume < 0 ||
       options.targetTets < 0 || options.optimizationLevel < 0 || options.optimizationLevel > 9 ||
-      options.maxDihedral <= 70 || options.maxDihedral >= 180)
+      options.maxDihedral <= 70 || options.maxDihedral >= 180 || options.maxTets < 1000)
     throw UsageError("tetrahedralize: radius-edge, volume and tet count must not be negative, the minimum "
                      "dihedral angle must be below 70 degrees, the maximum between 70 and 180, the "
-                     "optimization level 0 to 9");
+                     "optimization level 0 to 9, the tet budget at least 1000");
+  if (options.radiusEdge > 0 && options.radiusEdge < kMinRadiusEdge)
+    throw UsageError("tetrahedralize: a radius-edge bound of " + count(options.radiusEdge) +
+                     " may keep TetGen refining for ever; give " + count(kMinRadiusEdge) +
+                     " or more (0 turns quality refinement off)");
+  if (options.targetTets > options.maxTets)
+    throw UsageError("tetrahedralize: a target of " + std::to_string(options.targetTets) + " tets is above the budget of " +
+                     std::to_string(options.maxTets));
+}
+
+// A volume bound that needs more tets than the budget (every tet is at most the bound) is refused before
+// TetGen starts; `volume` is what the surfaces enclose.
+void checkVolumeBound(const TetrahedralizeOptions& options, double volume, const std::string& source) {
+  if (options.targetTets > 0 || options.maxVolume <= 0) return;
+  const double least = volume / options.maxVolume;
+  if (least > double(options.maxTets))
+    throw UsageError(source + ": a volume bound of " + count(options.maxVolume) + " mm^3 needs at least " + count(least) +
+                     " tets for the " + count(volume) + " mm^3 enclosed, more than the budget of " +
+                     std::to_string(options.maxTets));
+}
+
+[[noreturn]] void budgetUsed(const TetrahedralizeOptions& options, const std::string& source) {
+  throw BadInput(source, "TetGen stopped after adding its budget of " + std::to_string(pointBudget(options)) +
+                             " points before meeting its quality and volume bounds; loosen them or raise the tet budget");
 }
 
 // With options.targetTets, the volume bound is searched for; `volume` is what the surfaces enclose.
 TetMesh meshToTarget(const TriMesh& all, const std::vector<RegionSeed>& seeds, const std::vector<int>& labels,
-                     const TetrahedralizeOptions& options, double volume) {
-  if (options.targetTets == 0) return mesh(all, seeds, labels, options, options.maxVolume);
-  // Tet count goes about as 1 / volume bound: start from a guess (Delaunay refinement leaves tets well
-  // below the bound on average) and rescale by the count obtained.
-  double bound = 3.0 * volume / double(options.targetTets);
-  TetMesh result;
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    result = mesh(all, seeds, labels, options, bound);
-    const double ratio = double(result.T.rows()) / double(options.targetTets);
-    if (std::abs(ratio - 1.0) <= 0.15) break;
-    bound *= ratio;
+                     const TetrahedralizeOptions& options, double volume, const std::string& source) {
+  checkVolumeBound(options, volume, source);
+  if (options.targetTets == 0) {
+    TetgenRun run = mesh(all, seeds, labels, options, options.maxVolume);
+    if (run.budgetUsed) budgetUsed(options, source);
+    return std::move(run.tets);
   }
-  return result;
+  // Tet count goes about as 1 / volume bound: start from a guess (Delaunay refinement leaves tets well
+  // below the bound on average) and rescale by the count obtained. A run stopped by its budget has too few
+  // tets for its bound, so the rescaled bound is too small: it is at least doubled.
+  double bound = 3.0 * volume / double(options.targetTets);
+  TetgenRun run;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    run = mesh(all, seeds, labels, options, bound);
+    const double ratio = double(run.tets.T.rows()) / double(options.targetTets);
+    if (!run.budgetUsed && std::abs(ratio - 1.0) <= 0.15) break;
+    bound *= run.budgetUsed ? std::max(2.0, ratio) : ratio;
+  }
+  if (run.budgetUsed) budgetUsed(options, source);
+  return std::move(run.tets);
 }
 
 }  // namespace
@@ -211,7 +261,8 @@ TetMesh tetrahedralizeRegions(const std::vector<RegionSurface>& regions, const T
   checkCrossings(regions, c);
   std::vector<int> labels;
   for (const RegionSurface& r : regions) labels.push_back(r.label);
-  return meshToTarget(c.all, regionSeeds(c.all, c.owner), labels, options, enclosedVolume(c.all.V, c.all.F));
+  return meshToTarget(c.all, regionSeeds(c.all, c.owner), labels, options, enclosedVolume(c.all.V, c.all.F),
+                      surfaceName(regions, 0));
 }
 
 TetMesh tetrahedralizeLabels(const SharedLabelSurfaces& surfaces, const TetrahedralizeOptions& options,
@@ -233,7 +284,7 @@ TetMesh tetrahedralizeLabels(const SharedLabelSurfaces& surfaces, const Tetrahed
   all.F = surfaces.F;
   if (const auto pairs = selfIntersections(all.V, all.F); !pairs.empty())
     throw BadInput(source, std::to_string(pairs.size()) + " pairs of triangles of the shared surfaces cross");
-  return meshToTarget(all, partitionSeeds(all, surfaces.sides, labels), labels, options, volume);
+  return meshToTarget(all, partitionSeeds(all, surfaces.sides, labels), labels, options, volume, source);
 }
 
 TetMesh tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options, const std::string& source) {

@@ -21,6 +21,13 @@
 // Input is checked before TetGen sees it, because TetGen aborts or loops on bad surfaces: every surface
 // must be a closed 2-manifold, and no triangle may cross another of any surface (self_intersections.h).
 // Violations are BadInput naming the surface; TetGen's own failures become NumericalFailure.
+//
+// TetGen never runs unbounded. Options it may not finish with are refused before it starts (UsageError):
+// a radius-edge bound below kMinRadiusEdge, a volume bound that needs more than maxTets tets. While it
+// runs, it may add at most a budget of points (TetGen -S): maxTets / 5 (a tet mesh has about six tets per
+// vertex), and with targetTets at most 2 targetTets + 50,000. A mesh that used up its budget did not meet
+// its bounds and is refused (BadInput naming the surface); with targetTets the next attempt's looser volume
+// bound usually meets them.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -31,6 +38,10 @@
 
 namespace vesalius::meshing {
 
+// Below this radius-edge bound TetGen's Delaunay refinement need not terminate (its manual: the bound must
+// be above 1; near 1 it may run for ever).
+constexpr double kMinRadiusEdge = 1.1;
+
 struct TetrahedralizeOptions {
   double radiusEdge = 1.5;    // TetGen -q: largest circumradius / shortest edge; 0 disables quality refinement
   double minDihedral = 12.0;  // TetGen -q and the smoothing: smallest dihedral angle aimed for, degrees
@@ -39,6 +50,7 @@ struct TetrahedralizeOptions {
   bool keepSurface = false;   // TetGen -Y: no Steiner points on the surfaces (their triangles stay as given)
   int optimizationLevel = 4;  // TetGen -O: rounds of flips and smoothing (0..9)
   double maxDihedral = 130.0;  // TetGen -o/: optimization removes dihedral angles above this, degrees
+  long maxTets = 5'000'000;    // the budget above: no mesh of more tets is attempted
 };
 
 struct RegionSurface {
