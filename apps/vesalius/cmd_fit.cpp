@@ -4,7 +4,7 @@
 // (§4.3). The report holds what the seed plots: per-marker errors and their histogram (Fig. 16), the
 // objective per iteration (Fig. 9), the minimum dihedral angles before and after (Fig. 17); the picture
 // shows the fitted surface's contour over the scan's slices (Fig. 18) beside the error histogram.
-#include "cmd_fit.h"
+#include "common.h"
 
 #include "landmark_pairs.h"
 
@@ -20,6 +20,7 @@
 #include "vesalius/fit/initial_placement.h"
 #include "vesalius/fit/plastic_fit.h"
 #include "vesalius/fit/point_constraints.h"
+#include "vesalius/fit/refit.h"
 #include "vesalius/fit/surface_projection.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
@@ -48,6 +49,27 @@
 namespace vesalius::cli {
 
 namespace {
+
+struct FitCommandOptions {
+  std::string templ, icp, templateLandmarks, scanLandmarks, attachTo, attachments;
+  std::string out, surfaceOut, embed, embedOut, overlay, png;
+  double attachRadius = 0;
+  bool unattached = false;
+  std::string method = "plastic", init = "similarity";
+  long targetTets = 20000;
+  int templateFaces = 0;  // coarsen a surface template to this many triangles first; 0: as targetTets allows
+  double window = 400, level = 40;
+  fit::FitOptions solver;
+  fit::RefitOptions refit;  // refits: 0 is seed 002's fit alone
+  CommonOptions common;
+};
+
+struct FitOutcome {
+  long tets = 0;  // of the last round's mesh (the template's unless refitted)
+  Eigen::VectorXd icpBefore, icpAfter;  // #icp marker distances to the surface, mm
+  double seconds = 0;
+};
+
 
 namespace fs = std::filesystem;
 
@@ -608,8 +630,6 @@ void writeOutputs(const FitCommandOptions& o, const std::vector<fit::FitRound>& 
   }
 }
 
-}  // namespace
-
 FitOutcome runFit(const FitCommandOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   checkOptions(o);
@@ -653,6 +673,8 @@ FitOutcome runFit(const FitCommandOptions& o) {
   o.common.finish(report);
   return {rounds.back().rest.T.rows(), icpBefore, result.icpErrors, seconds};
 }
+
+}  // namespace
 
 void addFitCommand(CLI::App& app) {
   auto o = std::make_shared<FitCommandOptions>();

@@ -2,7 +2,7 @@
 // a radiologist's picks, seed 002 §3.1, §4.1.1); `suggest` proposes ICP markers where a scan has an edge
 // near a roughly placed template (issue 5; docs/methods/marker-suggestions.md); `convert` moves markers
 // between 3D Slicer (.mrk.json, .fcsv), plain CSV and ITK-SNAP (.annot) files.
-#include "cmd_markers.h"
+#include "common.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
@@ -29,6 +29,14 @@
 namespace vesalius::cli {
 
 namespace {
+
+struct SampleOptions {
+  std::string labels, table, label, out;
+  int count = 100;
+  std::uint64_t seed = 1;
+  CommonOptions common;
+};
+
 
 struct ConvertOptions {
   std::string in, out, scan, kind = "landmark";
@@ -87,8 +95,6 @@ std::string millimetres(double value) {
   std::snprintf(text, sizeof text, "%.1f mm", value);
   return text;
 }
-
-}  // namespace
 
 void runSample(const SampleOptions& o) {
   // Refuse an existing output before the work, not after it (writeMarkers checks again when it writes).
@@ -154,8 +160,6 @@ void runSample(const SampleOptions& o) {
     std::cout << "left out " << std::lround(edgeArea) << " of " << std::lround(area + edgeArea)
               << " mm^2 of surface where the label is cut by the edge of the scan\n";
 }
-
-namespace {
 
 void addSample(CLI::App& markers) {
   auto o = std::make_shared<SampleOptions>();

@@ -12,8 +12,7 @@
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/meshing/label_surface.h"
-#include "vesalius/segmentation/ct_tissues.h"
-#include "vesalius/segmentation/label_ops.h"
+#include "vesalius/patient/scan_anatomy.h"
 #include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/body_frame.h"
 #include "vesalius/transfer/bones_inside_skin.h"
@@ -27,7 +26,6 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <regex>
 
 namespace vesalius::cli {
 
@@ -44,73 +42,6 @@ struct FullBodyOptions {
   CommonOptions common;
 };
 
-// TotalSegmentator's names (labels_total_v1.tsv, v2) sorted into the kinds, bone groups and symmetry of
-// seed 000 §8: the trunk (spine, sternum, pelvis, rib cage, skull) moves symmetrically; paired limb bones
-// move freely. Each vertebra is a group of its own; the ribs and sternum are the rib cage; hips and sacrum
-// the pelvis.
-void classify(ReferenceTissue& tissue) {
-  const std::string& n = tissue.name;
-  const auto matches = [&n](const char* pattern) { return std::regex_match(n, std::regex(pattern)); };
-  if (matches("(vertebrae_.*|sacrum|hip_(left|right)|rib_(left|right)_.*|sternum|skull|costal_cartilages)")) {
-    tissue.kind = TissueKind::Bone;
-    tissue.symmetric = true;
-    tissue.group = matches("vertebrae_.*") ? n
-                   : matches("(sacrum|hip_.*)") ? "pelvis"
-                   : matches("skull") ? "skull" : "rib_cage";
-  } else if (matches("(femur|humerus|scapula|clavicula|tibia|fibula|patella|radius|ulna)_.*")) {
-    tissue.kind = TissueKind::Bone;
-  } else if (matches("(gluteus|iliopsoas|autochthon)_.*")) {
-    tissue.kind = TissueKind::Muscle;
-  } else {
-    tissue.kind = TissueKind::Organ;
-  }
-}
-
-// The sagittal plane from the labels that come in left/right pairs: its normal the mean direction from
-// each right part's centroid to its left partner's, through the mean of their midpoints.
-Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const std::string& source) {
-  std::map<std::string, Eigen::Vector3d> centroid;
-  for (const ReferenceTissue& t : tissues) centroid[t.name] = t.mesh.V.colwise().mean().transpose();
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
-  int pairs = 0;
-  const std::regex left("(.*)left(.*)");
-  for (const auto& [name, c] : centroid) {
-    std::smatch m;
-    if (!std::regex_match(name, m, left)) continue;
-    const auto partner = centroid.find(m[1].str() + "right" + m[2].str());
-    if (partner == centroid.end()) continue;
-    normal += (c - partner->second).normalized();
-    point += 0.5 * (c + partner->second);
-    ++pairs;
-  }
-  if (pairs == 0) throw BadInput(source, "no left/right pair of labels to find the sagittal plane from");
-  return {point / pairs, normal.normalized()};
-}
-
-// Skin vertices on the caps where the scan's field of view cut the body: beyond the centre of the first
-// or last slice along any axis that the body touches (the surface of a mask that touches the volume's end
-// closes half a voxel past it). The axial ends are the usual cuts; a CT's lateral edges cut the arms.
-std::vector<int> cutVertices(const TriMesh& skin, const segmentation::Mask& body) {
-  const GridGeometry& g = body.geometry;
-  Eigen::Array<bool, 3, 1> touchesFirst(false, false, false), touchesLast(false, false, false);
-  for (int k = 0; k < g.size.z(); ++k)
-    for (int j = 0; j < g.size.y(); ++j)
-      for (int i = 0; i < g.size.x(); ++i) {
-        if (!body.at(i, j, k)) continue;
-        const Eigen::Vector3i at(i, j, k);
-        for (int a = 0; a < 3; ++a) touchesFirst[a] |= at[a] == 0, touchesLast[a] |= at[a] == g.size[a] - 1;
-      }
-  std::vector<int> cut;
-  for (Eigen::Index v = 0; v < skin.V.rows(); ++v) {
-    const Eigen::Vector3d index = g.worldToIndex(skin.V.row(v).transpose());
-    bool isCut = false;
-    for (int a = 0; a < 3; ++a)
-      isCut |= (touchesFirst[a] && index[a] < -0.25) || (touchesLast[a] && index[a] > g.size[a] - 1 + 0.25);
-    if (isCut) cut.push_back(int(v));
-  }
-  return cut;
-}
-
 void runReference(const ReferenceOptions& o) {
   io::Report report("reference torso");
   report.input("scan", o.scan);
@@ -120,34 +51,15 @@ void runReference(const ReferenceOptions& o) {
   Progress progress(o.common.progressStyle());
   const Image ct = io::readScan(o.scan);
   const LabelMap labels = io::readLabelMap(o.labels, o.table);
-  if (labels.labels.geometry.size != ct.geometry.size)
-    throw BadInput(o.labels, "the label map's grid differs from the scan's (" + o.scan + ")");
-
+  patient::ScanAnatomyOptions surfaces;
+  surfaces.skinFaces = o.skinFaces;
+  surfaces.tissueFaces = o.tissueFaces;
   ReferenceAnatomy anatomy;
+  {
+    auto timer = report.time("skin and tissues");
+    anatomy = patient::scanAnatomy(ct, labels, surfaces, o.scan, o.labels, &progress);
+  }
   anatomy.name = o.name.empty() ? "torso (" + o.scan + ")" : o.name;
-  meshing::SurfaceOptions skinSurface;
-  skinSurface.targetFaces = o.skinFaces;
-  {
-    auto timer = report.time("skin");
-    progress.begin("skin", "body mask and its surface");
-    const segmentation::Mask body = segmentation::segmentCtBody(ct, {});
-    anatomy.skin = meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, skinSurface);
-    anatomy.skinCutVertices = cutVertices(anatomy.skin, body);
-    progress.end();
-  }
-  meshing::SurfaceOptions tissueSurface;
-  tissueSurface.targetFaces = o.tissueFaces;
-  {
-    auto timer = report.time("tissues");
-    for (meshing::LabelSurface& s : meshing::labelSurfaces(labels, {}, tissueSurface, &progress)) {
-      ReferenceTissue tissue{s.name, TissueKind::Organ, "", false, std::move(s.mesh)};
-      tissue.mesh.faceAttributes = {};
-      classify(tissue);
-      anatomy.tissues.push_back(std::move(tissue));
-    }
-  }
-  anatomy.skin.faceAttributes = {};
-  anatomy.sagittal = sagittalPlaneOfPairs(anatomy.tissues, o.labels);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
   report.output("reference", o.out);
   int bones = 0;

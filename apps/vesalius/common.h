@@ -47,5 +47,6 @@ void addPoseCommand(CLI::App& app);
 void addFatCommand(CLI::App& app);
 void addReferenceCommand(CLI::App& app);
 void addTransferCommand(CLI::App& app);
+void addPatientCommand(CLI::App& app);
 
 }  // namespace vesalius::cli

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   vesalius::cli::addFatCommand(app);
   vesalius::cli::addReferenceCommand(app);
   vesalius::cli::addTransferCommand(app);
+  vesalius::cli::addPatientCommand(app);
   vesalius::cli::addDemoCommand(app);
 
   try {

@@ -4,13 +4,7 @@
 
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
-#include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/mesh_io.h"
-#include "vesalius/meshing/label_surface.h"
-#include "vesalius/meshing/mesh_volume.h"
-#include "vesalius/meshing/surface_samples.h"
-
-#include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
@@ -148,89 +142,6 @@ TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
   EXPECT_EQ(runVesalius({"markers", "convert", in, "--out", out, "--force"}).exitCode, 0);
 }
 
-// The main job on the shipped CT, part 1: every output of the segmentation exists, every surface is closed
-// and free of crossing triangles, and the surfaces enclose the volume of their labels (restored by the
-// surface offset, undone only around the places where it would make triangles cross).
-void expectClosedTissueSurfaces(const std::string& out, const CommandResult& r, const nlohmann::json& report) {
-  for (const char* file : {"labels.nii.gz", "labels.tsv", "labels.png", "report.json", "bone.vtp", "body.vtp",
-                           "subcutaneous_fat.vtp", "fat.vtp", "soft_tissue.vtp"}) {
-    EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
-    expectContains(r.out, file);
-  }
-  const LabelMap labels = io::readLabelMap(out + "/labels.nii.gz");
-  EXPECT_EQ(labels.table.entries.size(), 5u);
-  EXPECT_EQ(labels.labels.geometry.size, Eigen::Vector3i(122, 101, 112));
-  for (const char* name : {"body", "subcutaneous_fat", "fat", "soft_tissue", "bone"}) {
-    SCOPED_TRACE(name);
-    const nlohmann::json& m = report["metrics"][name];
-    EXPECT_TRUE(m["closed"].get<bool>());
-    EXPECT_EQ(m["self_intersections"].get<long>(), 0);
-    EXPECT_GT(m["triangles"].get<long>(), 1000);
-    // measured at most 0.17 % (fat)
-    EXPECT_LT(std::abs(m["surface_volume_ml"].get<double>() / m["voxel_volume_ml"].get<double>() - 1.0), 0.005);
-  }
-}
-
-double dice(const Grid<std::uint8_t>& a, const Grid<Label>& labels, Label id) {
-  long both = 0, inA = 0, inB = 0;
-  for (std::size_t i = 0; i < a.values.size(); ++i) {
-    const bool x = a.values[i] != 0, y = labels.values[i] == id;
-    both += x && y;
-    inA += x;
-    inB += y;
-  }
-  return 2.0 * double(both) / double(inA + inB);
-}
-
-// Part 2: the liver template fitted to the markers spread over the liver label (seed 002). The fitted
-// surface is compared with the whole label, not only the 150 markers: the distance from every point of the
-// label's boundary inside the scan to the fitted surface, and the overlap of the two volumes on the scan.
-void expectFittedLiver(const std::string& out, const nlohmann::json& report) {
-  for (const char* file : {"liver_icp.mrk.json", "liver_fitted.vtu", "liver_fitted.vtp", "liver_smooth_fitted.obj",
-                           "liver_fit.png", "liver_fit.json"})
-    EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
-  const nlohmann::json& fit = report["metrics"]["fit"];
-  EXPECT_EQ(fit["markers"].get<long>(), 300);
-  // Seed 002 reaches 0.06-0.39 mm; the issue asks 0.5. Measured 0.10 mm from 6.64 mm after three refits
-  // (2.32 mm after the first fit, which stalls on crushed tets).
-  EXPECT_LT(fit["mean_error_after_mm"].get<double>(), 0.5);
-  std::ifstream fitReport(out + "/liver_fit.json");
-  const nlohmann::json rounds = nlohmann::json::parse(fitReport)["metrics"]["rounds"];
-  ASSERT_GE(rounds.size(), 2u);  // the fit, then refits (measured 3)
-  EXPECT_GT(rounds[0]["icp_error_mm"]["mean"].get<double>(), 1.0);  // the first fit alone stalls (2.32 mm)
-
-  const LabelMap organs = io::readLabelMap(kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz",
-                                           kData + "/ct-abdomen-pelvis/labels_total_v1.tsv");
-  const Label liver = organs.table.resolve("liver");
-  const TriMesh fitted = io::readTriMesh(out + "/liver_fitted.vtp");
-  const TriMesh boundary =
-      meshing::withinScan(meshing::labelSurfaces(organs, {liver}).front().mesh, organs.labels.geometry);
-  const TriangleTree tree(fitted.V, fitted.F);
-  double sum = 0;
-  for (const ClosestPoint& c : tree.closest(boundary.V)) sum += std::sqrt(c.squaredDistance);
-  const double meanDistance = sum / double(boundary.V.rows());
-  // Within one voxel (3 mm) of the whole boundary, not only at the markers (15 mm apart): measured
-  // 2.45 mm and Dice 0.970 (150 markers without refits: 4.71 mm and 0.906).
-  EXPECT_LT(meanDistance, organs.labels.geometry.spacing.minCoeff())
-      << "mean distance from the liver label's boundary to the fitted surface, mm";
-  const double overlap = dice(meshing::meshInsideMask(fitted, organs.labels.geometry), organs.labels, liver);
-  EXPECT_GT(overlap, 0.95) << "Dice of the fitted liver and the liver label";
-  std::cout << "fitted liver: mean distance to the label boundary " << meanDistance << " mm, Dice " << overlap
-            << '\n';
-}
-
-// The main job on the shipped CT: segment it, then fit the liver template (about 5 minutes on 2 cores).
-TEST(Cli, DemoSegmentsTheScanAndFitsTheLiver) {
-  const std::string out = outputDir() + "/demo";
-  const CommandResult r = runVesalius({"demo", "--out", out, "--force", "--progress", "none"});
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  std::ifstream in(out + "/report.json");
-  const nlohmann::json report = nlohmann::json::parse(in);
-  expectClosedTissueSurfaces(out, r, report);
-  expectFittedLiver(out, report);
-  expectContains(r.out, "Summary");
-}
-
 TEST(Cli, SegmentThenSurfaceOneLabelByName) {
   const std::string labels = outputDir() + "/ct-labels.nii.gz", bone = outputDir() + "/bone.stl";
   ASSERT_EQ(runVesalius({"segment", "--scan", kData + "/ct-abdomen-pelvis/example_ct_sm.nii.gz", "--modality", "ct",
@@ -257,7 +168,7 @@ TEST(Cli, UsageErrorsExit2) {
 
 TEST(Cli, EveryCommandHasHelpWithAnExample) {
   for (const std::vector<std::string>& command :
-       {std::vector<std::string>{"info"}, {"segment"}, {"surface"}, {"markers", "convert"}, {"demo"}}) {
+       {std::vector<std::string>{"info"}, {"segment"}, {"surface"}, {"markers", "convert"}, {"demo"}, {"patient"}}) {
     std::vector<std::string> args = command;
     args.push_back("--help");
     const CommandResult r = runVesalius(args);

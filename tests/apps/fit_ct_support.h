@@ -58,13 +58,17 @@ inline MatrixX3d markerPositions(const std::string& markerFile) {
   return P;
 }
 
-// Mean distance (mm) from the points P (#P by 3) to the surface in `surfaceFile`.
-inline double meanDistanceToSurface(const MatrixX3d& P, const std::string& surfaceFile) {
-  const TriMesh surface = io::readTriMesh(surfaceFile);
+// Mean distance (mm) from the points P (#P by 3) to `surface`.
+inline double meanDistanceToSurface(const MatrixX3d& P, const TriMesh& surface) {
   const TriangleTree tree(surface.V, surface.F);
   double sum = 0;
   for (const ClosestPoint& c : tree.closest(P)) sum += std::sqrt(c.squaredDistance);
   return sum / double(P.rows());
+}
+
+// The same to the surface in `surfaceFile`.
+inline double meanDistanceToSurface(const MatrixX3d& P, const std::string& surfaceFile) {
+  return meanDistanceToSurface(P, io::readTriMesh(surfaceFile));
 }
 
 // The CT label's voxel volume, mm^3.

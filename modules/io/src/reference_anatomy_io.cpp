@@ -49,13 +49,13 @@ TriMesh readMesh(const fs::path& folder, const std::string& file) {
 Json toJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 // A file name made of the tissue's name: letters, digits, '-' and '_' kept, anything else '_'.
-std::string fileNameOf(const std::string& name) {
+}  // namespace
+
+std::string tissueFile(const std::string& name) {
   std::string file;
   for (const char c : name) file += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-  return file.empty() ? "tissue" : file;
+  return "tissues/" + (file.empty() ? std::string("tissue") : file) + ".obj";
 }
-
-}  // namespace
 
 ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
   const fs::path root(folder);
@@ -135,7 +135,7 @@ void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& an
     doc["sagittal_plane"] = {{"point", toJson(anatomy.sagittal.point)}, {"normal", toJson(anatomy.sagittal.normal)}};
     doc["tissues"] = Json::array();
     for (const ReferenceTissue& tissue : anatomy.tissues) {
-      const std::string file = "tissues/" + fileNameOf(tissue.name) + ".obj";
+      const std::string file = tissueFile(tissue.name);
       if (fs::exists(temporary / file)) throw BadInput(folder, "two tissues share the file name " + file);
       writeTriMesh((temporary / file).string(), tissue.mesh);
       Json t = {{"name", tissue.name}, {"kind", tissueKindName(tissue.kind)}};

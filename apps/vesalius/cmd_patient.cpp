@@ -1,0 +1,217 @@
+// vesalius patient: one patient's CT (and its organ/bone segmentation) in, that patient's anatomy out
+// (patient/virtual_patient.h). Reads the inputs and the organ template library, runs the pipeline, writes
+// the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
+#include "common.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/core/markers.h"
+#include "vesalius/io/gltf.h"
+#include "vesalius/io/image_io.h"
+#include "vesalius/io/marker_io.h"
+#include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/patient/virtual_patient.h"
+#include "vesalius/viz/slice_overlay.h"
+#include "vesalius/viz/surface_render.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace vesalius::cli {
+
+namespace {
+
+struct PatientOptions {
+  std::string scan, organs, organTable, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
+  bool png = false;
+  patient::VirtualPatientOptions pipeline;
+  CommonOptions common;
+};
+
+// Every <organ>.obj (.stl .ply .vtp) of the library folder, the organ named by the file's stem.
+std::vector<patient::OrganTemplate> readTemplates(const std::string& folder) {
+  if (!fs::is_directory(folder)) throw BadInput(folder, "no such template folder");
+  std::vector<patient::OrganTemplate> templates;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    const std::string ext = fileExtension(e.path().string());
+    if (!e.is_regular_file() || (ext != ".obj" && ext != ".stl" && ext != ".ply" && ext != ".vtp")) continue;
+    templates.push_back({e.path().stem().string(), io::readTriMesh(e.path().string()), e.path().string()});
+  }
+  std::sort(templates.begin(), templates.end(), [](const auto& a, const auto& b) { return a.organ < b.organ; });
+  return templates;
+}
+
+nlohmann::json fitReport(const patient::FittedOrgan& f) {
+  const auto meanAndMax = [](const Eigen::VectorXd& e) {
+    return nlohmann::json{{"mean", e.mean()}, {"max", e.maxCoeff()}};
+  };
+  return {{"template", f.templateSource},
+          {"markers", f.fit.markers.rows()},
+          {"error_before_mm", meanAndMax(f.fit.errorBefore)},
+          {"error_after_mm", meanAndMax(f.fit.errorAfter)},
+          {"tets_per_round", f.fit.tetsPerRound},
+          {"mean_error_per_round_mm", f.fit.meanErrorPerRound}};
+}
+
+MarkerSet icpMarkers(const patient::FittedOrgan& f) {
+  MarkerSet set;
+  set.name = f.organ;
+  for (Eigen::Index i = 0; i < f.fit.markers.rows(); ++i) {
+    Marker m;
+    m.label = "icp-" + std::to_string(i + 1);
+    m.kind = MarkerKind::IcpMarker;
+    m.position = f.fit.markers.row(i).transpose();
+    m.description = "on label " + f.organ;
+    set.markers.push_back(std::move(m));
+  }
+  return set;
+}
+
+void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
+  std::vector<viz::SurfaceLayer> layers;
+  for (const ReferenceTissue& t : anatomy.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
+  layers.push_back({&anatomy.skin, kSkinColour, 0.2});
+  viz::writeSurfacesPng(layers, path, {});
+}
+
+// Everything into `dir` (a fresh private folder): the anatomy, the skin with its fat, the tissue classes,
+// each fitted organ's markers and carried template, the report.
+void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p, const std::string& dir,
+                  io::Report& report) {
+  io::writeReferenceAnatomy(dir + "/anatomy", p.anatomy, {});
+  io::writeAnatomyGlb(dir + "/patient.glb", p.anatomy, {});
+  TriMesh skin = p.anatomy.skin;
+  skin.vertexAttributes.real["fat_thickness"] = p.fatThickness;
+  io::writeTriMesh(dir + "/skin_fat.vtp", skin);
+  io::writeLabelMap(dir + "/tissue_classes.nii.gz", p.tissueClasses);
+  viz::writeSliceOverlayPng(scan, p.tissueClasses, dir + "/tissue_classes.png");
+  nlohmann::json labelTissues = nlohmann::json::object(), fits = nlohmann::json::object();
+  for (const auto& [label, tissues] : p.labelTissues)
+    for (const std::string& t : tissues) labelTissues[label].push_back("anatomy/" + io::tissueFile(t));
+  if (!p.fits.empty()) fs::create_directories(dir + "/organs");
+  for (const patient::FittedOrgan& f : p.fits) {
+    const std::string stem = dir + "/organs/" + fs::path(io::tissueFile(f.organ)).stem().string();
+    io::writeMarkers(stem + "_markers.mrk.json", icpMarkers(f));
+    io::writeTriMesh(stem + "_template_fitted.obj", f.fit.carriedTemplate);
+    fits[f.organ] = fitReport(f);
+  }
+  report.metric("label_tissues", labelTissues);
+  report.metric("organ_fits", fits);
+  report.metric("tissues", p.anatomy.tissues.size());
+  report.metric("skin_vertices", p.anatomy.skin.V.rows());
+  report.metric("skin_cut_vertices", p.anatomy.skinCutVertices.size());
+  report.metric("fat_thickness_mm", {{"mean", p.fatThickness.mean()}, {"max", p.fatThickness.maxCoeff()}});
+  for (const auto& [stage, seconds] : p.stageSeconds) report.stage(stage, seconds);
+  if (o.png) renderPng(p.anatomy, dir + "/patient.png");
+  report.write(dir + "/report.json", {});
+}
+
+void runPatient(const PatientOptions& o) {
+  if (o.organTable.size() && o.organs.empty()) throw UsageError("patient: --organ-table needs --organs");
+  if (fs::exists(o.out) && !o.common.force)
+    throw UsageError(o.out + " exists; pass --force to replace it");
+  if (fs::exists(o.out) && !fs::is_directory(o.out)) throw UsageError(o.out + " exists and is not a folder");
+  if (o.png && !viz::canRenderSurfaces()) throw UsageError("patient: --png needs a display (run under xvfb-run)");
+  for (const std::string& input : {o.scan, o.organs})
+    if (!input.empty() && fs::exists(input) && fs::exists(o.out) &&
+        fs::weakly_canonical(input).string().rfind(fs::weakly_canonical(o.out).string() + "/", 0) == 0)
+      throw UsageError("patient: " + input + " lies inside --out, which would be replaced");
+  io::Report report("patient");
+  report.input("scan", o.scan);
+  if (!o.organs.empty()) report.input("organs", o.organs);
+  report.input("templates", o.templates);
+  report.parameter("markers_per_organ", o.pipeline.organFit.markers);
+  report.parameter("organ_tets", o.pipeline.organFit.targetTets);
+  report.parameter("refits", o.pipeline.organFit.refits);
+  Progress progress(o.common.progressStyle());
+
+  const Image scan = io::readScan(o.scan);
+  std::optional<LabelMap> organs;
+  if (!o.organs.empty()) organs = io::readLabelMap(o.organs, o.organTable);
+  const std::vector<patient::OrganTemplate> templates = readTemplates(o.templates);
+  const patient::VirtualPatient p = patient::buildVirtualPatient(scan, organs ? &*organs : nullptr, templates,
+                                                                 o.pipeline, o.scan, o.organs, &progress);
+
+  const TemporaryFolder temporary(o.out);
+  const std::string staged = temporary.path() + "/" + fs::path(o.out).filename().string();
+  fs::create_directories(staged);
+  writeOutputs(o, scan, p, staged, report);
+  if (fs::exists(o.out)) fs::remove_all(o.out);
+  fs::rename(staged, o.out);
+  if (!o.common.report.empty()) o.common.finish(report);
+
+  std::cout << std::fixed << std::setprecision(2) << "\nSummary\n  " << o.out << "/anatomy: "
+            << p.anatomy.tissues.size() << " tissues in the skin (" << p.anatomy.skin.V.rows()
+            << " vertices, subcutaneous fat " << p.fatThickness.mean() << " mm on average, skin_fat.vtp); patient.glb\n";
+  for (const patient::FittedOrgan& f : p.fits)
+    std::cout << "  " << f.organ << ": " << f.templateSource << " fitted to " << f.fit.markers.rows()
+              << " markers on its label, error " << f.fit.errorBefore.mean() << " -> " << f.fit.errorAfter.mean()
+              << " mm (mean)\n";
+  std::cout << "  tissue classes in tissue_classes.nii.gz (tissue_classes.png); stage times and label_tissues in "
+            << o.out << "/report.json\n";
+}
+
+void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
+  cmd.add_option("--templates", o.templates,
+                 "Organ template library: a folder of closed surfaces named after their organ's label (liver.obj)")
+      ->capture_default_str();
+  cmd.add_option("--markers", o.pipeline.organFit.markers, "Markers spread over each fitted organ's label")
+      ->check(CLI::Range(10, 10000))
+      ->capture_default_str();
+  cmd.add_option("--organ-tets", o.pipeline.organFit.targetTets, "About this many tets per organ template and refit")
+      ->check(CLI::Range(500L, 1000000L))
+      ->capture_default_str();
+  cmd.add_option("--refits", o.pipeline.organFit.refits, "Refits of each organ fit from the shape it reached")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  cmd.add_flag("--png", o.png, "Also write patient.png: the anatomy inside the translucent skin (needs a display)");
+  addCommonOptions(cmd, o.common);
+}
+
+const char* kOutputs =
+    "Writes DIR/anatomy/ (skin and every tissue, the format `vesalius transfer` reads), patient.glb (the same for "
+    "any glTF viewer), skin_fat.vtp (fat thickness per skin vertex), tissue_classes.nii.gz and .png, organs/ "
+    "(markers and fitted templates) and report.json (label_tissues, organ fits, stage times). "
+    "docs/virtual-patient.md says what the model holds.";
+
+}  // namespace
+
+void addPatientCommand(CLI::App& app) {
+  auto o = std::make_shared<PatientOptions>();
+  CLI::App* cmd = app.add_subcommand("patient", "One patient's CT in, that patient's anatomy out (the virtual patient)");
+  cmd->add_option("--scan", o->scan, "The patient's CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
+  cmd->add_option("--organs", o->organs,
+                  "Organ and bone label map of the same scan, as TotalSegmentator writes it (v1 or v2 names)");
+  cmd->add_option("--organ-table", o->organTable, "Its label table (default: the one beside it)");
+  cmd->add_option("--out", o->out, "Output folder DIR (written whole at the end, or not at all)")->required();
+  addPatientOptions(*cmd, *o);
+  cmd->footer(std::string("Example:\n"
+                          "  vesalius patient --scan ct.nii.gz --organs seg.nii.gz --organ-table labels_total_v1.tsv "
+                          "--out patient\n") +
+              kOutputs);
+  cmd->callback([o] { runPatient(*o); });
+}
+
+void addDemoCommand(CLI::App& app) {
+  auto o = std::make_shared<PatientOptions>();
+  o->scan = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/example_ct.nii.gz";
+  o->organs = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
+  o->organTable = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/labels_total_v1.tsv";
+  o->out = "demo-output";
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "The main job on the shipped example CT: `vesalius patient` on it and its TotalSegmentator labels");
+  cmd->add_option("--scan", o->scan, "CT scan to use instead of the shipped one")->capture_default_str();
+  cmd->add_option("--organs", o->organs, "Organ and bone label map of that scan")->capture_default_str();
+  cmd->add_option("--organ-table", o->organTable, "Its label table")->capture_default_str();
+  cmd->add_option("--out", o->out, "Output folder DIR")->capture_default_str();
+  addPatientOptions(*cmd, *o);
+  cmd->footer(std::string("Example:\n  vesalius demo --out demo-output --force\n"
+                          "Takes about a minute and a half on 2 cores, most of it the liver fit. ") +
+              kOutputs);
+  cmd->callback([o] { runPatient(*o); });
+}
+
+}  // namespace vesalius::cli

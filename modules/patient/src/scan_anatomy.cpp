@@ -1,0 +1,105 @@
+#include "vesalius/patient/scan_anatomy.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <map>
+#include <regex>
+
+namespace vesalius::patient {
+
+void classifyTissue(ReferenceTissue& tissue) {
+  const std::string& n = tissue.name;
+  const auto matches = [&n](const char* pattern) { return std::regex_match(n, std::regex(pattern)); };
+  tissue.group.clear();
+  tissue.symmetric = false;
+  if (matches("(vertebrae_.*|sacrum|hip_(left|right)|rib_(left|right)_.*|sternum|skull|costal_cartilages)")) {
+    tissue.kind = TissueKind::Bone;
+    tissue.symmetric = true;
+    tissue.group = matches("vertebrae_.*") ? n
+                   : matches("(sacrum|hip_.*)") ? "pelvis"
+                   : matches("skull") ? "skull" : "rib_cage";
+  } else if (matches("(femur|humerus|scapula|clavicula|tibia|fibula|patella|radius|ulna)_.*")) {
+    tissue.kind = TissueKind::Bone;
+  } else if (matches("(gluteus|iliopsoas|autochthon)_.*")) {
+    tissue.kind = TissueKind::Muscle;
+  } else {
+    tissue.kind = TissueKind::Organ;
+  }
+}
+
+Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const std::string& source) {
+  std::map<std::string, Eigen::Vector3d> centroid;
+  for (const ReferenceTissue& t : tissues) centroid[t.name] = t.mesh.V.colwise().mean().transpose();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
+  int pairs = 0;
+  const std::regex left("(.*)left(.*)");
+  for (const auto& [name, c] : centroid) {
+    std::smatch m;
+    if (!std::regex_match(name, m, left)) continue;
+    const auto partner = centroid.find(m[1].str() + "right" + m[2].str());
+    if (partner == centroid.end()) continue;
+    normal += (c - partner->second).normalized();
+    point += 0.5 * (c + partner->second);
+    ++pairs;
+  }
+  if (pairs == 0) throw BadInput(source, "no left/right pair of labels to find the sagittal plane from");
+  return {point / pairs, normal.normalized()};
+}
+
+std::vector<int> scanCutVertices(const TriMesh& skin, const Grid<std::uint8_t>& body) {
+  const GridGeometry& g = body.geometry;
+  Eigen::Array<bool, 3, 1> touchesFirst(false, false, false), touchesLast(false, false, false);
+  for (int k = 0; k < g.size.z(); ++k)
+    for (int j = 0; j < g.size.y(); ++j)
+      for (int i = 0; i < g.size.x(); ++i) {
+        if (!body.at(i, j, k)) continue;
+        const Eigen::Vector3i at(i, j, k);
+        for (int a = 0; a < 3; ++a) touchesFirst[a] |= at[a] == 0, touchesLast[a] |= at[a] == g.size[a] - 1;
+      }
+  std::vector<int> cut;
+  for (Eigen::Index v = 0; v < skin.V.rows(); ++v) {
+    const Eigen::Vector3d index = g.worldToIndex(skin.V.row(v).transpose());
+    bool isCut = false;
+    for (int a = 0; a < 3; ++a)
+      isCut |= (touchesFirst[a] && index[a] < -0.25) || (touchesLast[a] && index[a] > g.size[a] - 1 + 0.25);
+    if (isCut) cut.push_back(int(v));
+  }
+  return cut;
+}
+
+TriMesh scanSkin(const Image& ct, const ScanAnatomyOptions& options, const std::string& source,
+                 std::vector<int>& cutVertices) {
+  const segmentation::Mask body = segmentation::segmentCtBody(ct, {});
+  if (segmentation::countVoxels(body) == 0) throw BadInput(source, "the CT holds no body (no voxel above air)");
+  meshing::SurfaceOptions surface;
+  surface.targetFaces = options.skinFaces;
+  TriMesh skin = meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, surface);
+  skin.faceAttributes = {};
+  cutVertices = scanCutVertices(skin, body);
+  return skin;
+}
+
+ReferenceAnatomy scanAnatomy(const Image& ct, const LabelMap& labels, const ScanAnatomyOptions& options,
+                             const std::string& scanSource, const std::string& labelsSource, Progress* progress) {
+  if (labels.labels.geometry.size != ct.geometry.size)
+    throw BadInput(labelsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
+  ReferenceAnatomy anatomy;
+  if (progress) progress->begin("skin", "body mask and its surface");
+  anatomy.skin = scanSkin(ct, options, scanSource, anatomy.skinCutVertices);
+  if (progress) progress->end();
+  meshing::SurfaceOptions tissueSurface;
+  tissueSurface.targetFaces = options.tissueFaces;
+  for (meshing::LabelSurface& s : meshing::labelSurfaces(labels, {}, tissueSurface, progress)) {
+    ReferenceTissue tissue{s.name, TissueKind::Organ, "", false, std::move(s.mesh)};
+    tissue.mesh.faceAttributes = {};
+    classifyTissue(tissue);
+    anatomy.tissues.push_back(std::move(tissue));
+  }
+  anatomy.sagittal = sagittalPlaneOfPairs(anatomy.tissues, labelsSource);
+  return anatomy;
+}
+
+}  // namespace vesalius::patient

@@ -1,0 +1,132 @@
+#include "vesalius/patient/virtual_patient.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/fat/fat_forest.h"
+#include "vesalius/fat/thickness_at_vertices.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/segmentation/ct_tissues.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace vesalius::patient {
+
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(VirtualPatient& patient) : patient_(patient) {}
+  void end(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    patient_.stageSeconds.emplace_back(stage, std::chrono::duration<double>(now - start_).count());
+    start_ = now;
+  }
+
+ private:
+  VirtualPatient& patient_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Without an organ map: the skin and the scan's bone class as one bone, the sagittal plane through the
+// skin's centroid across the scan's left-right axis.
+ReferenceAnatomy classAnatomy(const Image& ct, const LabelMap& classes, const ScanAnatomyOptions& options,
+                              const std::string& scanSource) {
+  ReferenceAnatomy anatomy;
+  anatomy.skin = scanSkin(ct, options, scanSource, anatomy.skinCutVertices);
+  // The bone class is many thin pieces, which decimation tears and then takes long over (tens of seconds
+  // for the shipped CT at 3,000 triangles); its surface is kept as flying edges and smoothing make it.
+  const segmentation::Mask bone = segmentation::maskOf(classes.labels, segmentation::kCtBone);
+  if (segmentation::countVoxels(bone) > 0) {
+    TriMesh mesh = meshing::labelSurface(classes, segmentation::kCtBone);
+    mesh.faceAttributes = {};
+    anatomy.tissues.push_back({"bone", TissueKind::Bone, "", false, std::move(mesh)});
+  }
+  anatomy.sagittal.point = anatomy.skin.V.colwise().mean().transpose();
+  anatomy.sagittal.normal = (ct.geometry.direction * Eigen::Vector3d::UnitX()).normalized();
+  return anatomy;
+}
+
+Eigen::VectorXd fatAtSkin(const LabelMap& classes, const ReferenceAnatomy& anatomy, const std::string& scanSource) {
+  const fat::FatForest forest(segmentation::maskOf(classes.labels, segmentation::kCtSkin),
+                              segmentation::maskOf(classes.labels, segmentation::kCtSubcutaneousFat), {}, scanSource);
+  Eigen::VectorXd thickness = fat::thicknessAtVertices(forest, anatomy.skin.V, anatomy.skin.F).thickness;
+  for (const int v : anatomy.skinCutVertices) thickness[v] = 0;
+  return thickness;
+}
+
+// Before any work: the organ map on the scan's grid, and at least one of its labels with voxels named as
+// the model knows organs and bones (a template's organ, or a bone or muscle name of classifyTissue).
+void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<OrganTemplate>& templates,
+                   const std::string& scanSource, const std::string& organsSource) {
+  const GridGeometry &a = organs.labels.geometry, &b = ct.geometry;
+  if (a.size != b.size || (a.origin - b.origin).norm() > 1e-3 || (a.spacing - b.spacing).norm() > 1e-6 ||
+      (a.direction - b.direction).norm() > 1e-6)
+    throw BadInput(organsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
+  std::vector<bool> present;
+  for (const Label l : organs.labels.values) {
+    if (std::size_t(l) >= present.size()) present.resize(std::size_t(l) + 1, false);
+    present[std::size_t(l)] = true;
+  }
+  for (const LabelEntry& e : organs.table.entries) {
+    if (e.id == 0 || std::size_t(e.id) >= present.size() || !present[std::size_t(e.id)]) continue;
+    ReferenceTissue t{e.name, TissueKind::Other, "", false, {}};
+    classifyTissue(t);
+    const bool hasTemplate = std::any_of(templates.begin(), templates.end(), [&](const OrganTemplate& o) { return o.organ == e.name; });
+    if (hasTemplate || t.kind != TissueKind::Organ) return;
+  }
+  throw BadInput(organsSource, "no label with voxels is named as an organ with a template or a bone or muscle "
+                               "(TotalSegmentator's names, e.g. liver, hip_left); is the label table the right one?");
+}
+
+}  // namespace
+
+VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+                                   const VirtualPatientOptions& options, const std::string& scanSource,
+                                   const std::string& organsSource, Progress* progress) {
+  if (organs) checkOrganMap(ct, *organs, templates, scanSource, organsSource);
+  VirtualPatient patient;
+  StageClock clock(patient);
+  try {
+    patient.tissueClasses = segmentation::segmentCtTissues(ct, {}, progress);
+  } catch (const BadInput& e) {
+    if (!e.file().empty()) throw;
+    throw BadInput(scanSource, e.problem());
+  }
+  clock.end("segmentation");
+
+  if (organs) {
+    patient.anatomy = scanAnatomy(ct, *organs, options.surfaces, scanSource, organsSource, progress);
+    if (patient.anatomy.tissues.empty()) throw BadInput(organsSource, "no label of its table has voxels");
+  } else {
+    patient.anatomy = classAnatomy(ct, patient.tissueClasses, options.surfaces, scanSource);
+  }
+  patient.anatomy.name = "patient (" + scanSource + ")";
+  clock.end("anatomy from labels");
+
+  patient.fatThickness = fatAtSkin(patient.tissueClasses, patient.anatomy, scanSource);
+  clock.end("fat forests");
+
+  if (organs) {
+    for (ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
+    for (const OrganTemplate& t : templates) {
+      const auto tissue = std::find_if(patient.anatomy.tissues.begin(), patient.anatomy.tissues.end(),
+                                       [&](const ReferenceTissue& r) { return r.name == t.organ; });
+      if (tissue == patient.anatomy.tissues.end()) continue;  // not in the organ map, or no voxels
+      if (progress) progress->begin("fit " + t.organ, "fitting the " + t.organ + " template (" + t.source + ")");
+      FittedOrgan fitted{t.organ, t.source,
+                         fitOrganToLabel(t.surface, *organs, organs->table.resolve(t.organ), options.organFit,
+                                         organsSource, progress)};
+      if (progress) progress->end();
+      tissue->mesh = fitted.fit.surface;
+      patient.fits.push_back(std::move(fitted));
+      clock.end("fit " + t.organ);
+    }
+  } else {
+    for (const ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
+  }
+  patient.anatomy.validate(scanSource);
+  return patient;
+}
+
+}  // namespace vesalius::patient

@@ -1,0 +1,169 @@
+// `vesalius patient` on the shipped CT: the patient's own anatomy inside the field of view (run as
+// `vesalius demo`, which is `patient` on the shipped CT and its labels). The liver is
+// the SOFA liver template (templates/organs, not made from this scan) fitted to the CT's liver label, and
+// scored against that label; the bones are the labels' own surfaces, scored voxelized on the scan's grid.
+// Without the organ map the model holds the scan's skin and bone class. Bad inputs give one line naming
+// the file, exit 3 (2 for usage), and no output folder.
+#include "fit_ct_support.h"
+
+#include "vesalius/io/gltf.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/surface_samples.h"
+#include "vesalius/segmentation/label_ops.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+namespace vesalius::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fresh(const std::string& name) {
+  const std::string dir = outputPath("patient", name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+double diceWithLabel(const TriMesh& mesh, const LabelMap& labels, Label id) {
+  const Grid<std::uint8_t> inside = meshing::meshInsideMask(mesh, labels.labels.geometry);
+  return segmentation::diceCoefficient(inside, segmentation::maskOf(labels.labels, id));
+}
+
+// Mean distance from the label's boundary inside the scan to `mesh`, mm.
+double boundaryDistance(const TriMesh& mesh, const LabelMap& labels, Label id) {
+  const TriMesh boundary = meshing::withinScan(meshing::labelSurfaces(labels, {id}).front().mesh, labels.labels.geometry);
+  return meanDistanceToSurface(boundary.V, mesh);
+}
+
+TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
+  const std::string out = fresh("demo");
+  const CommandResult r = runVesalius({"demo", "--out", out, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::cout << r.out;
+  const nlohmann::json report = readJson(out + "/report.json");
+  const nlohmann::json& m = report["metrics"];
+  const ReferenceAnatomy anatomy = io::readReferenceAnatomy(out + "/anatomy");
+  const LabelMap labels = io::readLabelMap(kCtLabels, kCtLabelTable);
+  const double voxel = labels.labels.geometry.spacing.maxCoeff();
+
+  // Every label with voxels is in the model, its files where the report says.
+  for (const char* name : {"liver", "hip_left", "hip_right", "sacrum", "femur_left", "femur_right", "vertebrae_L5"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(m["label_tissues"].contains(name));
+    EXPECT_TRUE(fs::exists(out + "/" + m["label_tissues"][name][0].get<std::string>()));
+  }
+
+  // The fitted liver against the label it was fitted to (seed 002's 0.5 mm at the markers; the Dice
+  // 0.90 and one voxel over the whole boundary).
+  const nlohmann::json& liver = m["organ_fits"]["liver"];
+  EXPECT_LT(liver["error_after_mm"]["mean"].get<double>(), 0.5);
+  for (const long tets : liver["tets_per_round"].get<std::vector<long>>()) EXPECT_LE(tets, 2 * 5000);
+  const auto tissue = [&](const std::string& name) -> const TriMesh& {
+    for (const ReferenceTissue& t : anatomy.tissues)
+      if (t.name == name) return t.mesh;
+    throw std::runtime_error("no tissue " + name);
+  };
+  const Label liverId = labels.table.resolve("liver");
+  const double liverDice = diceWithLabel(tissue("liver"), labels, liverId),
+               liverDistance = boundaryDistance(tissue("liver"), labels, liverId);
+  std::cout << "liver: Dice " << liverDice << ", label boundary " << liverDistance << " mm from the fitted surface\n";
+  EXPECT_GE(liverDice, 0.90);
+  EXPECT_LT(liverDistance, voxel);
+  for (const char* file : {"organs/liver_markers.mrk.json", "organs/liver_template_fitted.obj", "tissue_classes.nii.gz",
+                           "tissue_classes.png", "skin_fat.vtp", "patient.glb"})
+    EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
+  expectContains(r.out, "Summary");
+
+  // Bones: the labels' own surfaces, voxelized on the scan's grid.
+  for (const char* name : {"hip_left", "hip_right", "sacrum", "femur_left", "femur_right", "vertebrae_L5"}) {
+    const double dice = diceWithLabel(tissue(name), labels, labels.table.resolve(name));
+    std::cout << name << ": Dice " << dice << '\n';
+    EXPECT_GE(dice, 0.90) << name;
+  }
+
+  // The skin: closed, its cut on the field of view's caps, fat from the forests (none on the cut).
+  const io::TriMeshSummary skin = io::summarize(anatomy.skin);
+  EXPECT_TRUE(skin.closed);
+  EXPECT_GT(anatomy.skinCutVertices.size(), 0u);
+  const TriMesh skinFat = io::readTriMesh(out + "/skin_fat.vtp");
+  const Eigen::VectorXd fat = skinFat.vertexAttributes.real.at("fat_thickness");
+  ASSERT_EQ(fat.size(), anatomy.skin.V.rows());
+  for (const int v : anatomy.skinCutVertices) EXPECT_EQ(fat[v], 0.0);
+  std::cout << "fat thickness: mean " << fat.mean() << " mm, max " << fat.maxCoeff() << " mm\n";
+  EXPECT_GT(fat.mean(), 0.0);
+  // The whole model for glTF viewers: one node per tissue, the skin last.
+  const std::vector<io::GltfMesh> glb = io::readGlb(out + "/patient.glb");
+  ASSERT_EQ(glb.size(), anatomy.tissues.size() + 1);
+  EXPECT_EQ(glb.back().name, "skin");
+  EXPECT_EQ(glb.front().name, anatomy.tissues.front().name);
+  EXPECT_EQ(glb.front().mesh.F.rows(), anatomy.tissues.front().mesh.F.rows());
+  for (const char* stage : {"segmentation", "anatomy from labels", "fat forests", "fit liver"}) {
+    bool found = false;
+    for (const nlohmann::json& s : report["stages"]) found |= s["name"] == stage;
+    EXPECT_TRUE(found) << stage;
+  }
+}
+
+TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
+  const std::string out = fresh("without_organs");
+  const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const ReferenceAnatomy anatomy = io::readReferenceAnatomy(out + "/anatomy");
+  ASSERT_EQ(anatomy.tissues.size(), 1u);
+  EXPECT_EQ(anatomy.tissues[0].name, "bone");
+  EXPECT_EQ(anatomy.tissues[0].kind, TissueKind::Bone);
+  // The bone class lies inside the skin.
+  const Grid<std::uint8_t> body = meshing::meshInsideMask(anatomy.skin, io::readScan(kCtScan).geometry),
+                           bone = meshing::meshInsideMask(anatomy.tissues[0].mesh, body.geometry);
+  const double outside = double(segmentation::countVoxels(segmentation::maskAndNot(bone, body))) /
+                         double(segmentation::countVoxels(bone));
+  std::cout << "bone voxels outside the skin: " << outside << '\n';
+  EXPECT_LT(outside, 0.001);
+}
+
+void expectRefused(const std::vector<std::string>& args, int code, const std::string& file, const std::string& out) {
+  const CommandResult r = runVesalius(args);
+  EXPECT_EQ(r.exitCode, code) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  expectContains(r.err, file);
+  EXPECT_FALSE(fs::exists(out)) << out;
+}
+
+TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
+  const std::string out = fresh("refused");
+  // A scan with no body: air everywhere.
+  Image air = io::readScan(kCtScan);
+  std::fill(air.values.begin(), air.values.end(), -1000.0f);
+  const std::string airScan = outputPath("patient", "air.nii.gz");
+  io::writeScan(airScan, air, WriteOptions{true});
+  expectRefused({"patient", "--scan", airScan, "--out", out, "--progress", "none"}, 3, airScan, out);
+  // A label map on another grid (the v2 labels of the CT's first 30 slices).
+  const std::string otherGrid = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/example_seg.nii.gz";
+  expectRefused({"patient", "--scan", kCtScan, "--organs", otherGrid, "--organ-table",
+                 std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/labels_total_v2.tsv", "--out", out, "--progress", "none"},
+                3, otherGrid, out);
+  // A table whose names are no organ or bone the model knows.
+  const std::string table = outputPath("patient", "unknown_names.tsv");
+  {
+    std::ofstream t(table);
+    t << "label\tname\n";
+    for (int id = 1; id <= 104; ++id) t << id << "\tstructure_" << id << "\n";
+  }
+  expectRefused({"patient", "--scan", kCtScan, "--organs", kCtLabels, "--organ-table", table, "--out", out,
+                 "--progress", "none"},
+                3, kCtLabels, out);
+  // An output folder that exists is kept without --force.
+  fs::create_directories(out);
+  std::ofstream(out + "/keep.txt") << "mine";
+  const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "none"});
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  expectContains(r.err, out);
+  EXPECT_TRUE(fs::exists(out + "/keep.txt"));
+}
+
+}  // namespace
+}  // namespace vesalius::test
