@@ -42,13 +42,17 @@ std::string text(const Json& object, const char* key, const std::string& source,
   return value.get<std::string>();
 }
 
-TriMesh readMesh(const fs::path& folder, const std::string& file) {
-  return readTriMesh((folder / file).string());
+// A mesh named in reference.json (`source`): a path relative to the folder that stays inside it, so that a
+// file handed to us never makes us read elsewhere.
+TriMesh readMesh(const fs::path& folder, const std::string& file, const std::string& source) {
+  const fs::path relative = fs::path(file).lexically_normal();
+  if (file.empty() || relative.is_absolute() || relative.has_root_name() || *relative.begin() == "..")
+    throw BadInput(source, "mesh file '" + file + "' lies outside the reference folder");
+  return readTriMesh((folder / relative).string());
 }
 
 Json toJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
-// A file name made of the tissue's name: letters, digits, '-' and '_' kept, anything else '_'.
 }  // namespace
 
 std::string tissueFile(const std::string& name) {
@@ -68,10 +72,11 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
   }
   if (!doc.is_object() || doc.value("format", "") != kFormat)
     throw BadInput(source, std::string("not a reference anatomy (\"format\" is not \"") + kFormat + "\")");
-  if (doc.value("version", 0) != 1) throw BadInput(source, "unsupported reference anatomy version");
+  if (!doc.contains("version") || !doc["version"].is_number_integer() || doc["version"].get<long long>() != 1)
+    throw BadInput(source, "unsupported reference anatomy version (\"version\" must be the number 1)");
   ReferenceAnatomy anatomy;
   anatomy.name = doc.value("name", folder);
-  anatomy.skin = readMesh(root, text(doc, "skin", source, "the document"));
+  anatomy.skin = readMesh(root, text(doc, "skin", source, "the document"), source);
   if (doc.contains("skin_cut_vertices")) {
     if (!doc["skin_cut_vertices"].is_array()) throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
     for (const Json& v : doc["skin_cut_vertices"]) {
@@ -93,7 +98,7 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
     }
     tissue.group = t.value("group", "");
     tissue.symmetric = t.value("symmetric", false);
-    tissue.mesh = readMesh(root, text(t, "file", source, where));
+    tissue.mesh = readMesh(root, text(t, "file", source, where), source);
     anatomy.tissues.push_back(std::move(tissue));
   }
   if (doc.contains("points"))
