@@ -1,6 +1,7 @@
 #include "anatomy_rig.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/safe_file_name.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/text_file.h"
@@ -118,7 +119,13 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
   std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();
   io::writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), options);
   if (hasRotatedFrames(rig.skeleton)) writeFrames(dir + "/frames.txt", rig.skeleton, options);
-  for (const auto& [name, mesh] : meshes) io::writeTriMesh(dir + "/meshes/" + name, mesh, io::MeshWriteOptions{options});
+  // Mesh names come from label tables and reference.json: their stems are made safe (their extensions are
+  // the writer's format).
+  for (const auto& [name, mesh] : meshes) {
+    const fs::path file(name);
+    io::writeTriMesh(dir + "/meshes/" + safeFileName(file.stem().string()) + file.extension().string(), mesh,
+                     io::MeshWriteOptions{options});
+  }
 }
 
 AnatomyRig readAnatomyRig(const std::string& dir) {

@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/safe_file_name.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/label_surface.h"
@@ -104,7 +105,8 @@ void runSurface(const SurfaceOptions& o) {
                                    : meshing::labelSurfaces(map, ids, options, &progress);
   }
   for (const meshing::LabelSurface& s : surfaces) {
-    const std::string path = single ? o.out : (std::filesystem::path(o.out) / (s.name + o.format)).string();
+    // Label names come from the label table, a file: made safe, so that no name writes outside --out.
+    const std::string path = single ? o.out : (std::filesystem::path(o.out) / (safeFileName(s.name) + o.format)).string();
     io::writeTriMesh(path, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
     report.output(s.name, path);
     std::cout << path << ": " << s.mesh.V.rows() << " vertices, " << s.mesh.F.rows() << " triangles\n";

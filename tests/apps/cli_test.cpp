@@ -93,6 +93,27 @@ TEST(Cli, MiscountedMotionIsReadWithOneWarningLine) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+// A label table names files: a name holding "../" or an absolute path still writes inside --out.
+TEST(Cli, SurfaceNamesFromATableStayInTheOutputFolder) {
+  const std::string dir = outputDir() + "/hostile_names", out = dir + "/surfaces";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  LabelMap map = io::readLabelMap(kData + "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz",
+                                  kData + "/ct-abdomen-pelvis/labels_total_v1.tsv");
+  for (LabelEntry& e : map.table.entries) {
+    if (e.name == "liver") e.name = "../escaped";
+    if (e.name == "kidney_left") e.name = "/tmp/vesalius_escaped";
+  }
+  io::writeLabelMap(dir + "/labels.nii.gz", map, WriteOptions{true});
+  const CommandResult r = runVesalius({"surface", "--labels", dir + "/labels.nii.gz", "--label", "../escaped",
+                                       "--label", "/tmp/vesalius_escaped", "--out", out, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/___escaped.vtp"));
+  EXPECT_TRUE(fs::exists(out + "/_tmp_vesalius_escaped.vtp"));
+  EXPECT_FALSE(fs::exists(dir + "/escaped.vtp"));
+  EXPECT_FALSE(fs::exists("/tmp/vesalius_escaped.vtp"));
+}
+
 TEST(Cli, DicomFolderWithTwoSeriesListsThem) {
   const CommandResult r = runVesalius({"info", kData + "/bad/dicom_two_series"});
   EXPECT_EQ(r.exitCode, 0) << r.err;

@@ -1,7 +1,8 @@
 // writeAtomically: nothing is lost, nothing half-written is left, no planted symlink is followed, an
-// interrupted write leaves no temporary; fileExtension.
+// interrupted write leaves no temporary; fileExtension; safeFileName.
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
+#include "vesalius/core/safe_file_name.h"
 
 #include <gtest/gtest.h>
 
@@ -225,7 +226,9 @@ void expectNoTemporaryAfterSignal(const fs::path& dir, int signal, bool nested =
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);
   EXPECT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
-  if (WIFSIGNALED(status)) EXPECT_EQ(WTERMSIG(status), signal);
+  if (WIFSIGNALED(status)) {
+    EXPECT_EQ(WTERMSIG(status), signal);
+  }
   std::vector<std::string> after;
   for (const auto& entry : fs::directory_iterator(dir)) after.push_back(entry.path().filename());
   EXPECT_TRUE(after.empty()) << "left behind: " << (after.empty() ? "" : after.front());
@@ -251,6 +254,18 @@ TEST(AtomicFileExtension, KnowsDoubleExtensionsAndLowersCase) {
   EXPECT_EQ(fileExtension("archive.tar.gz"), ".gz");
   EXPECT_EQ(fileExtension("dir.d/README"), "");
   EXPECT_EQ(fileExtension("noext"), "");
+}
+
+// Names from files become file names that stay where they are put.
+TEST(SafeFileName, NoSeparatorDotOrControlCharacterSurvives) {
+  EXPECT_EQ(safeFileName("liver"), "liver");
+  EXPECT_EQ(safeFileName("hip_left-2"), "hip_left-2");
+  EXPECT_EQ(safeFileName("../x"), "___x");
+  EXPECT_EQ(safeFileName("/tmp/y"), "_tmp_y");
+  EXPECT_EQ(safeFileName(".."), "__");
+  EXPECT_EQ(safeFileName(std::string("a\0b\n", 4)), "a_b_");
+  EXPECT_EQ(safeFileName("f\xc3\xa9mur"), "f__mur");
+  EXPECT_EQ(safeFileName(""), "unnamed");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "vesalius/io/reference_anatomy_io.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/safe_file_name.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/text_file.h"
 
@@ -55,11 +56,7 @@ Json toJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}
 
 }  // namespace
 
-std::string tissueFile(const std::string& name) {
-  std::string file;
-  for (const char c : name) file += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-  return "tissues/" + (file.empty() ? std::string("tissue") : file) + ".obj";
-}
+std::string tissueFile(const std::string& name) { return "tissues/" + safeFileName(name) + ".obj"; }
 
 ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
   const fs::path root(folder);

@@ -25,8 +25,8 @@ namespace vesalius::io {
 // torso body (seed 000 §8 gives each trunk bone a map of its own) and `rig --reference` moves with the torso.
 inline constexpr const char* kSkullGroup = "skull";
 
-// The file of a tissue in a reference folder, relative to it: "tissues/<name>.obj", every character of the
-// name but letters, digits, '-' and '_' replaced by '_' (a name from a file never becomes a path).
+// The file of a tissue in a reference folder, relative to it: "tissues/<name>.obj" with the name made safe
+// (core/safe_file_name.h: a name from a file never becomes a path).
 std::string tissueFile(const std::string& name);
 
 // Throws BadInput naming the file (reference.json or a mesh) for anything missing or malformed.
