@@ -107,23 +107,19 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
   patient.fatThickness = fatAtSkin(patient.tissueClasses, patient.anatomy, scanSource);
   clock.end("fat forests");
 
-  if (organs) {
-    for (ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
-    for (const OrganTemplate& t : templates) {
-      const auto tissue = std::find_if(patient.anatomy.tissues.begin(), patient.anatomy.tissues.end(),
-                                       [&](const ReferenceTissue& r) { return r.name == t.organ; });
-      if (tissue == patient.anatomy.tissues.end()) continue;  // not in the organ map, or no voxels
-      if (progress) progress->begin("fit " + t.organ, "fitting the " + t.organ + " template (" + t.source + ")");
-      FittedOrgan fitted{t.organ, t.source,
-                         fitOrganToLabel(t.surface, *organs, organs->table.resolve(t.organ), options.organFit,
-                                         organsSource, progress)};
-      if (progress) progress->end();
-      tissue->mesh = fitted.fit.surface;
-      patient.fits.push_back(std::move(fitted));
-      clock.end("fit " + t.organ);
-    }
-  } else {
-    for (const ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
+  // Each tissue represents its own label; the fits below replace a label's surface by a fitted template.
+  for (const ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
+  for (const OrganTemplate& t : templates) {
+    const auto tissue = std::find_if(patient.anatomy.tissues.begin(), patient.anatomy.tissues.end(),
+                                     [&](const ReferenceTissue& r) { return r.name == t.organ; });
+    // Only with an organ map: not in it, or without voxels, the organ has no tissue to replace.
+    if (!organs || tissue == patient.anatomy.tissues.end()) continue;
+    FittedOrgan fitted{t.organ, t.source,
+                       fitOrganToLabel(t.surface, *organs, organs->table.resolve(t.organ), options.organFit,
+                                       organsSource, progress)};
+    tissue->mesh = fitted.fit.surface;
+    patient.fits.push_back(std::move(fitted));
+    clock.end("fit " + t.organ);
   }
   patient.anatomy.validate(scanSource);
   return patient;
