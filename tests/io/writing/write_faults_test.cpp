@@ -39,7 +39,8 @@ struct Case {
 class FullDisk : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::path(VESALIUS_TEST_OUTPUT) / "tmpfs";
+    // A mount of its own per test: ctest runs the tests of this file at the same time.
+    dir = fs::path(VESALIUS_TEST_OUTPUT) / ("tmpfs_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     std::system(("umount '" + dir.string() + "' 2>/dev/null").c_str());  // left by an aborted run
     fs::remove_all(dir);
     fs::create_directories(dir);
