@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 namespace vesalius::patient {
 
