@@ -27,7 +27,7 @@ void checkOptions(const PoserOptions& o) {
     throw BadInput(o.anatomyDir, "no such anatomy directory (write one with `vesalius rig`)");
 }
 
-std::vector<std::string> meshStems(const cli::AnatomyRig& rig) {
+std::vector<std::string> meshStems(const AnatomyRig& rig) {
   std::vector<std::string> stems;
   for (const std::string& path : rig.meshes) stems.push_back(fs::path(path).stem().string());
   return stems;
@@ -37,7 +37,7 @@ std::vector<std::string> meshStems(const cli::AnatomyRig& rig) {
 
 int runPoser(const PoserOptions& options) {
   checkOptions(options);
-  const cli::PosingSession session(options.anatomyDir, options.untangle, options.restoreVolume);
+  const posing::RigPoser session = cli::readRigPoser(options.anatomyDir, options.untangle, options.restoreVolume);
   const cli::RetargetedMotion motion(options.motionPath, options.mapPath, options.motionLps, session.rig().skeleton);
   if (options.frame < 0 || options.frame >= motion.frameCount())
     throw UsageError("--frame " + std::to_string(options.frame) + " outside 0.." +

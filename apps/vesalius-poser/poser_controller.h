@@ -1,6 +1,6 @@
 // What the poser shows and how keys, slider and timer change it: the frame of the motion, the skinning
 // method (LBS, DQS or CoR, seed 001 §3.5), playing or paused. Every change re-skins the shown frame at
-// once through the session's skinners (built once, posing_session.h) and moves the points of the
+// once through the session's skinners (built once, posing/rig_poser.h) and moves the points of the
 // existing actors; the status line gives the method, the frame and the time that skinning and carrying
 // the meshes took.
 #pragma once
@@ -19,7 +19,7 @@ namespace vesalius::poser {
 class PoserController {
  public:
   // All references are kept; options.method and options.frame are where it starts (shown by showFrame).
-  PoserController(const cli::PosingSession& session, const cli::RetargetedMotion& motion, AnatomyActors& actors,
+  PoserController(const posing::RigPoser& session, const cli::RetargetedMotion& motion, AnatomyActors& actors,
                   PoserWindow& window, const PoserOptions& options);
 
   void showFrame(int frame);  // wraps into 0 .. frameCount - 1
@@ -41,7 +41,7 @@ class PoserController {
  private:
   void updateStatus(const std::string& note = "");
 
-  const cli::PosingSession& session_;
+  const posing::RigPoser& session_;
   const cli::RetargetedMotion& motion_;
   AnatomyActors& actors_;
   PoserWindow& window_;

@@ -2,15 +2,20 @@
 // (patient/virtual_patient.h). Reads the inputs and the organ template library, runs the pipeline, writes
 // the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
 #include "common.h"
+#include "posing_session.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/markers.h"
+#include "vesalius/io/anatomy_rig_io.h"
 #include "vesalius/io/gltf.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/motion_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/patient/virtual_patient.h"
+#include "vesalius/posing/joint_angles.h"
+#include "vesalius/posing/rig_poser.h"
 #include "vesalius/viz/slice_overlay.h"
 #include "vesalius/viz/surface_render.h"
 
@@ -26,8 +31,11 @@ namespace {
 
 struct PatientOptions {
   std::string scan, organs, organTable, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
+  std::string pose, motion;  // joint angles, or a BVH motion and its frame
+  int frame = 0;
   bool png = false;
   patient::VirtualPatientOptions pipeline;
+  patient::PatientPoseOptions posing;
   CommonOptions common;
 };
 
@@ -77,10 +85,58 @@ void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
   viz::writeSurfacesPng(layers, path, {});
 }
 
+// The anatomy with the posed vertices of the rig's meshes (skin first, then the tissues in order).
+ReferenceAnatomy posedAnatomy(const ReferenceAnatomy& rest, const patient::PosedPatient& posed) {
+  ReferenceAnatomy anatomy = rest;
+  anatomy.skin.V = posed.meshes[0];
+  for (std::size_t t = 0; t < anatomy.tissues.size(); ++t) anatomy.tissues[t].mesh.V = posed.meshes[t + 1];
+  return anatomy;
+}
+
+nlohmann::json qualityReport(const patient::PosedPatient& posed) {
+  const posing::PoseQuality& q = posed.quality;
+  return {{"inverted_tets", q.inverted},
+          {"min_tet_volume_ratio", q.minVolumeRatio},
+          {"skin_volume_change_pct", q.skinVolumeChangePct},
+          {"tet_volume_change_pct", q.tetVolumeChangePct},
+          {"tissue_vertices_left_outside", q.leftOutside},
+          {"tissue_vertices_inside_at_rest", posed.tissueVerticesInsideAtRest},
+          {"untangled_tets", q.untangle.badBefore},
+          {"restore_max_move_mm", q.restore.maxMove}};
+}
+
+// DIR/posed/: the posed model (anatomy/ and patient.glb), the rig's posed tets and skeleton, the scan and
+// organ map re-posed.
+void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const patient::PosedPatient& posed,
+                const std::vector<Eigen::Isometry3d>& world, const std::string& dir, io::Report& report) {
+  fs::create_directories(dir);
+  const ReferenceAnatomy anatomy = posedAnatomy(p.anatomy, posed);
+  io::writeReferenceAnatomy(dir + "/anatomy", anatomy, {});
+  io::writeAnatomyGlb(dir + "/patient.glb", anatomy, {});
+  TetMesh tets = p.rig->rig.tets;
+  tets.V = posed.tets;
+  io::writeTetMesh(dir + "/tets.vtu", tets);
+  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(p.rig->rig.skeleton, world), {});
+  io::writeScan(dir + "/scan.nii.gz", posed.scan, {});
+  if (posed.organs) io::writeLabelMap(dir + "/organs.nii.gz", *posed.organs, {});
+  if (o.png) renderPng(anatomy, dir + "/patient.png");
+  nlohmann::json pose = qualityReport(posed);
+  pose["method"] = o.posing.method;
+  if (!o.pose.empty()) pose["angles"] = o.pose;
+  if (!o.motion.empty()) pose["motion"] = {{"file", o.motion}, {"frame", o.frame}};
+  report.metric("pose", pose);
+}
+
+// The pose asked for (posed world transforms of the rig's joints), or none.
+struct Pose {
+  std::vector<Eigen::Isometry3d> world;
+  patient::PosedPatient posed;
+};
+
 // Everything into `dir` (a fresh private folder): the anatomy, the skin with its fat, the tissue classes,
-// each fitted organ's markers and carried template, the report.
-void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p, const std::string& dir,
-                  io::Report& report) {
+// the rig, each fitted organ's markers and carried template, the posed patient, the report.
+void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p,
+                  const std::optional<Pose>& pose, const std::string& dir, io::Report& report) {
   io::writeReferenceAnatomy(dir + "/anatomy", p.anatomy, {});
   io::writeAnatomyGlb(dir + "/patient.glb", p.anatomy, {});
   TriMesh skin = p.anatomy.skin;
@@ -91,6 +147,15 @@ void writeOutputs(const PatientOptions& o, const Image& scan, const patient::Vir
   nlohmann::json labelTissues = nlohmann::json::object(), fits = nlohmann::json::object();
   for (const auto& [label, tissues] : p.labelTissues)
     for (const std::string& t : tissues) labelTissues[label].push_back("anatomy/" + io::tissueFile(t));
+  if (p.rig) {
+    io::writeAnatomyRig(dir + "/rig", p.rig->rig, p.rig->meshes, {});
+    report.metric("hip_joints", {{"left", p.rig->hipLeft}, {"right", p.rig->hipRight}});
+    report.metric("rig", {{"tets", p.rig->rig.tets.T.rows()},
+                          {"tet_vertices", p.rig->rig.tets.V.rows()},
+                          {"joints", p.rig->rig.skeleton.joints.size()}});
+  } else {
+    report.metric("rig", {{"none", p.noRigBecause}});
+  }
   if (!p.fits.empty()) fs::create_directories(dir + "/organs");
   for (const patient::FittedOrgan& f : p.fits) {
     const std::string stem = dir + "/organs/" + fs::path(io::tissueFile(f.organ)).stem().string();
@@ -106,6 +171,7 @@ void writeOutputs(const PatientOptions& o, const Image& scan, const patient::Vir
   report.metric("fat_thickness_mm", {{"mean", p.fatThickness.mean()}, {"max", p.fatThickness.maxCoeff()}});
   for (const auto& [stage, seconds] : p.stageSeconds) report.stage(stage, seconds);
   if (o.png) renderPng(p.anatomy, dir + "/patient.png");
+  if (pose) writePosed(o, p, pose->posed, pose->world, dir + "/posed", report);
   report.write(dir + "/report.json", {});
 }
 
@@ -115,6 +181,9 @@ void runPatient(const PatientOptions& o) {
     throw UsageError(o.out + " exists; pass --force to replace it");
   if (fs::exists(o.out) && !fs::is_directory(o.out)) throw UsageError(o.out + " exists and is not a folder");
   if (o.png && !viz::canRenderSurfaces()) throw UsageError("patient: --png needs a display (run under xvfb-run)");
+  if (!o.pose.empty() && !o.motion.empty()) throw UsageError("patient: give --pose or --motion, not both");
+  if (!posing::isSkinningMethod(o.posing.method)) throw UsageError("patient: --method must be lbs, dqs, cor or fem");
+  if (!o.pose.empty()) posing::parseJointAngles(o.pose);  // its syntax, before the work
   for (const std::string& input : {o.scan, o.organs})
     if (!input.empty() && fs::exists(input) && fs::exists(o.out) &&
         fs::weakly_canonical(input).string().rfind(fs::weakly_canonical(o.out).string() + "/", 0) == 0)
@@ -132,13 +201,31 @@ void runPatient(const PatientOptions& o) {
   std::optional<LabelMap> organs;
   if (!o.organs.empty()) organs = io::readLabelMap(o.organs, o.organTable);
   const std::vector<patient::OrganTemplate> templates = readTemplates(o.templates);
+  std::optional<Motion> motion;
+  if (!o.motion.empty()) {
+    motion = readMotion(o.motion);
+    if (o.frame >= motion->frameCount())
+      throw UsageError("patient: --frame " + std::to_string(o.frame) + " outside 0.." +
+                       std::to_string(motion->frameCount() - 1) + " of " + o.motion);
+  }
   const patient::VirtualPatient p = patient::buildVirtualPatient(scan, organs ? &*organs : nullptr, templates,
                                                                  o.pipeline, o.scan, o.organs, &progress);
+  std::optional<Pose> pose;
+  if (!o.pose.empty() || motion) {
+    if (!p.rig) throw BadInput(o.organs.empty() ? o.scan : o.organs, "cannot pose the patient: " + p.noRigBecause);
+    const Skeleton& skeleton = p.rig->rig.skeleton;
+    pose.emplace();
+    pose->world = motion ? RetargetedMotion(*motion, "", false, skeleton).pose(o.frame)
+                         : posing::poseFromJointAngles(skeleton, posing::parseJointAngles(o.pose));
+    progress.begin("pose", o.posing.method + " skinning, the scan re-posed");
+    pose->posed = patient::posePatient(*p.rig, pose->world, scan, organs ? &*organs : nullptr, o.posing);
+    progress.end();
+  }
 
   const TemporaryFolder temporary(o.out);
   const std::string staged = temporary.path() + "/" + fs::path(o.out).filename().string();
   fs::create_directories(staged);
-  writeOutputs(o, scan, p, staged, report);
+  writeOutputs(o, scan, p, pose, staged, report);
   if (fs::exists(o.out)) fs::remove_all(o.out);
   fs::rename(staged, o.out);
   if (!o.common.report.empty()) o.common.finish(report);
@@ -150,6 +237,15 @@ void runPatient(const PatientOptions& o) {
     std::cout << "  " << f.organ << ": " << f.templateSource << " fitted to " << f.fit.markers.rows()
               << " markers on its label, error " << f.fit.errorBefore.mean() << " -> " << f.fit.errorAfter.mean()
               << " mm (mean)\n";
+  if (p.rig)
+    std::cout << "  rig/: " << p.rig->rig.tets.T.rows() << " tets, joints " << p.rig->hipLeft << " and "
+              << p.rig->hipRight << " turn the hips (vesalius pose --anatomy " << o.out << "/rig)\n";
+  else
+    std::cout << "  no rig: " << p.noRigBecause << '\n';
+  if (pose)
+    std::cout << "  posed/: the model, scan and organ map posed by " << o.posing.method << "; "
+              << pose->posed.quality.inverted << " inverted tets, skin volume change "
+              << pose->posed.quality.skinVolumeChangePct << " %\n";
   std::cout << "  tissue classes in tissue_classes.nii.gz (tissue_classes.png); stage times and label_tissues in "
             << o.out << "/report.json\n";
 }
@@ -167,14 +263,30 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
   cmd.add_option("--refits", o.pipeline.organFit.refits, "Refits of each organ fit from the shape it reached")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
+  cmd.add_option("--pose", o.pose,
+                 "Also pose the patient by joint angles in degrees, e.g. 'femur_left=-30,0,0; femur_right=-30,0,0' "
+                 "(both hips flexed 30 degrees); the joints are pelvis, femur_left, femur_right, vertebrae_L5 upward");
+  cmd.add_option("--motion", o.motion, "Or pose it by a frame of a BVH motion (CMU names or the rig's own)");
+  cmd.add_option("--frame", o.frame, "The frame of --motion")->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd.add_option("--method", o.posing.method, "Skinning of the pose: cor (centres of rotation), dqs, lbs or fem")
+      ->capture_default_str();
+  cmd.add_option("--rig-tets", o.pipeline.rigging.rig.targetTets, "About this many tets in the rig")
+      ->check(CLI::Range(2000L, 2000000L))
+      ->capture_default_str();
+  cmd.add_option("--rig-voxel-size", o.pipeline.rigging.rig.voxelSize,
+                 "Voxels of the body and bones the rig is meshed from, mm (the scan's own if coarser)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd.add_flag("--png", o.png, "Also write patient.png: the anatomy inside the translucent skin (needs a display)");
   addCommonOptions(cmd, o.common);
 }
 
 const char* kOutputs =
     "Writes DIR/anatomy/ (skin and every tissue, the format `vesalius transfer` reads), patient.glb (the same for "
-    "any glTF viewer), skin_fat.vtp (fat thickness per skin vertex), tissue_classes.nii.gz and .png, organs/ "
-    "(markers and fitted templates) and report.json (label_tissues, organ fits, stage times). "
+    "any glTF viewer), skin_fat.vtp (fat thickness per skin vertex), tissue_classes.nii.gz and .png, rig/ (what "
+    "`vesalius pose` and vesalius-poser pose), organs/ (markers and fitted templates), with --pose or --motion "
+    "posed/ (the posed model, scan and organ map) and report.json (label_tissues, hip_joints, organ fits, pose "
+    "quality, stage times). "
     "docs/virtual-patient.md says what the model holds.";
 
 }  // namespace
@@ -190,7 +302,7 @@ void addPatientCommand(CLI::App& app) {
   addPatientOptions(*cmd, *o);
   cmd->footer(std::string("Example:\n"
                           "  vesalius patient --scan ct.nii.gz --organs seg.nii.gz --organ-table labels_total_v1.tsv "
-                          "--out patient\n") +
+                          "--out patient --pose 'femur_left=-30,0,0; femur_right=-30,0,0'\n") +
               kOutputs);
   cmd->callback([o] { runPatient(*o); });
 }

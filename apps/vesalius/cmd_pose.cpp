@@ -4,22 +4,19 @@
 // the tissue vertices that leave their tet. The skinned tets first get their rest volumes back
 // (posing/volume_restoration.h) unless --no-restore-volume, then the tets skinning inverts or flattens are
 // repaired (posing/untangle_tets.h) unless --no-untangle.
-#include "anatomy_rig.h"
 #include "common.h"
 #include "posing_session.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
-#include "vesalius/core/mesh_measures.h"
-#include "vesalius/core/tet_embedding.h"
+#include "vesalius/io/anatomy_rig_io.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/posing/joint_angles.h"
+#include "vesalius/posing/pose_quality.h"
 #include "vesalius/posing/posed_volume.h"
 #include "vesalius/viz/surface_render.h"
-
-#include <Eigen/LU>
 
 #include <chrono>
 #include <cmath>
@@ -82,77 +79,7 @@ std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io:
   return poses;
 }
 
-// What posing must not break (issue 6), for one pose.
-struct PoseQuality {
-  long inverted = 0;             // posed tets with signed volume <= 0 (inverted or flat)
-  double minVolumeRatio = 0;     // smallest posed / rest tet volume
-  double skinVolumeChangePct = std::numeric_limits<double>::quiet_NaN();  // posed / rest skin volume - 1, %
-  double tetVolumeChangePct = 0;  // posed / rest volume of the whole tet mesh - 1, %
-  double skinnedTetVolumeChangePct = 0;  // the same as skinned, before the restoration and the repair
-  long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
-  posing::VolumeRestoreResult restore;  // the restoration before these were measured (zeros if off)
-  posing::UntangleResult untangle;  // the repair after it (zeros with --no-untangle)
-};
-
-// Measures PoseQuality against the rest rig, whose tet volumes, skin volume and inside vertices it keeps.
-// A vertex is inside when its rest barycentric weights are all >= -1e-9 (TetLocator::locate's tolerance);
-// it has left when its posed position, re-expressed in its posed tet, has a weight below -1e-9 or none
-// (a flat tet). The carrying (TetEmbedding::apply) keeps the weights under any invertible tet map, inverted
-// ones included, so this checks the carried meshes end to end and catches flat tets.
-class QualityMeter {
- public:
-  static constexpr double kTolerance = 1e-9;
-
-  QualityMeter(const AnatomyRig& rig, const std::vector<TriMesh>& meshes, const std::vector<TetEmbedding>& embeddings)
-      : T_(rig.tets.T), restVolumes_(tetVolumes(rig.tets.V, rig.tets.T)), embeddings_(embeddings) {
-    for (std::size_t m = 0; m < meshes.size(); ++m)
-      if (fs::path(rig.meshes[m]).stem() == "skin") {
-        skin_ = int(m);
-        skinF_ = meshes[m].F;
-        restSkinVolume_ = enclosedVolume(meshes[m].V, meshes[m].F);
-      }
-    for (const TetEmbedding& e : embeddings)
-      inside_ += (e.barycentric.rowwise().minCoeff().array() >= -kTolerance).count();
-  }
-
-  long insideAtRest() const { return inside_; }  // tissue vertices inside the rest tets, over all meshes
-
-  // posedTets: #V by 3 posed tet vertices; carried: per mesh, its #P by 3 posed vertices.
-  PoseQuality operator()(const MatrixX3d& posedTets, const std::vector<MatrixX3d>& carried) const {
-    PoseQuality q;
-    const Eigen::ArrayXd volumes = tetVolumes(posedTets, T_).array();
-    q.inverted = (volumes <= 0).count();
-    q.minVolumeRatio = (volumes / restVolumes_.array()).minCoeff();
-    q.tetVolumeChangePct = 100 * (volumes.sum() / restVolumes_.sum() - 1);
-    if (skin_ >= 0) q.skinVolumeChangePct = 100 * (enclosedVolume(carried[skin_], skinF_) / restSkinVolume_ - 1);
-    for (std::size_t m = 0; m < carried.size(); ++m)
-      q.leftOutside += leftOutside(posedTets, embeddings_[m], carried[m]);
-    return q;
-  }
-
- private:
-  static long leftOutside(const MatrixX3d& posedTets, const TetEmbedding& e, const MatrixX3d& carried) {
-    long count = 0;
-    for (Eigen::Index p = 0; p < carried.rows(); ++p) {
-      if (e.barycentric.row(p).minCoeff() < -kTolerance) continue;  // outside at rest: carried by its nearest tet
-      const Eigen::RowVector3d a = posedTets.row(e.corners(p, 0));
-      Eigen::Matrix3d edges;
-      for (int k = 0; k < 3; ++k) edges.col(k) = (posedTets.row(e.corners(p, k + 1)) - a).transpose();
-      const Eigen::Vector3d w = edges.inverse() * (carried.row(p) - a).transpose();
-      const Eigen::Vector4d weights(1 - w.sum(), w[0], w[1], w[2]);
-      if (!(weights.minCoeff<Eigen::PropagateNaN>() >= -kTolerance)) ++count;  // NaN (a flat tet) counts as left
-    }
-    return count;
-  }
-
-  MatrixX4i T_;
-  Eigen::VectorXd restVolumes_;
-  const std::vector<TetEmbedding>& embeddings_;
-  int skin_ = -1;
-  MatrixX3i skinF_;
-  double restSkinVolume_ = 0;
-  long inside_ = 0;
-};
+using posing::PoseQuality;
 
 // quality.tsv: one row per pose; a frame of "-" is an --angles pose.
 void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& poses,
@@ -238,7 +165,7 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
   TetMesh tets = rig.tets;
   tets.V = posed.tets;
   io::writeTetMesh(dir + "/tets.vtu", tets, write);
-  io::writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, posed.world), o.common.writeOptions());
+  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(rig.skeleton, posed.world), o.common.writeOptions());
   std::vector<TriMesh> out = meshes;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     out[m].V = carried[m];
@@ -262,7 +189,7 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
 }
 
 void checkOptions(const PoseOptions& o) {
-  if (!isSkinningMethod(o.method))
+  if (!posing::isSkinningMethod(o.method))
     throw UsageError("pose: --method must be lbs, dqs, cor or fem");
   if (o.motion.empty() == o.angles.empty()) throw UsageError("pose: give --motion or --angles (not both)");
   if (o.every < 1) throw UsageError("pose: --every must be 1 or more");
@@ -278,9 +205,9 @@ void runPose(const PoseOptions& o) {
   io::Report report("pose");
   report.input("anatomy", o.anatomy);
   report.parameter("method", o.method);
-  const PosingSession session = [&] {
+  const posing::RigPoser session = [&] {
     auto timer = report.time("embed");
-    return PosingSession(o.anatomy, !o.noUntangle, !o.noRestore);
+    return readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);
   }();
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();
@@ -288,7 +215,7 @@ void runPose(const PoseOptions& o) {
   Volumes volumes;
   if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
-  const QualityMeter meter(rig, meshes, session.embeddings());
+  const posing::QualityMeter meter(rig, meshes, session.embeddings());
   std::vector<PoseQuality> quality;
   Progress progress(o.common.progressStyle());
   progress.begin("pose", o.method);
@@ -296,7 +223,7 @@ void runPose(const PoseOptions& o) {
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto start = std::chrono::steady_clock::now();
     Posed posed{MatrixX3d(), poses[p].world};
-    const PosingSession::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
+    const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
     skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<MatrixX3d> carried;
     session.carry(posed.tets, carried);

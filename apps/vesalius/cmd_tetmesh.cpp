@@ -1,6 +1,6 @@
 // vesalius tetmesh: a tetrahedral mesh of closed surfaces, or of labels of a label map (one region each).
 #include "common.h"
-#include "label_regions.h"
+#include "vesalius/rigging/label_regions.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/tet_quality.h"
@@ -60,9 +60,9 @@ std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progre
   const LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
-  LabelRegionOptions regions;
+  rigging::LabelRegionOptions regions;
   regions.body = o.body;
-  return labelRegionSurfaces(map, ids, regions, o.labels, &progress);
+  return rigging::labelRegionSurfaces(map, ids, regions, o.labels, &progress);
 }
 
 // --shared: the labels' surfaces share their boundaries where they touch; with --body the rest of the

@@ -41,7 +41,8 @@ double boundaryDistance(const TriMesh& mesh, const LabelMap& labels, Label id) {
 
 TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   const std::string out = fresh("demo");
-  const CommandResult r = runVesalius({"demo", "--out", out, "--progress", "none"});
+  const CommandResult r =
+      runVesalius({"demo", "--out", out, "--progress", "none", "--pose", "femur_left=-30,0,0; femur_right=-30,0,0"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::cout << r.out;
   const nlohmann::json report = readJson(out + "/report.json");
@@ -101,10 +102,53 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   EXPECT_EQ(glb.back().name, "skin");
   EXPECT_EQ(glb.front().name, anatomy.tissues.front().name);
   EXPECT_EQ(glb.front().mesh.F.rows(), anatomy.tissues.front().mesh.F.rows());
-  for (const char* stage : {"segmentation", "anatomy from labels", "fat forests", "fit liver"}) {
+  for (const char* stage : {"segmentation", "anatomy from labels", "fat forests", "fit liver", "rig"}) {
     bool found = false;
     for (const nlohmann::json& s : report["stages"]) found |= s["name"] == stage;
     EXPECT_TRUE(found) << stage;
+  }
+
+  // Posable: the hips' joints named, the rig posed by `vesalius pose`, the posed model as seed 001 claims.
+  EXPECT_EQ(m["hip_joints"]["left"], "femur_left");
+  EXPECT_EQ(m["hip_joints"]["right"], "femur_right");
+  const nlohmann::json& pose = m["pose"];
+  std::cout << "posed: " << pose.dump() << '\n';
+  EXPECT_EQ(pose["inverted_tets"].get<long>(), 0);
+  EXPECT_LT(std::abs(pose["skin_volume_change_pct"].get<double>()), 1.0);
+  EXPECT_EQ(pose["tissue_vertices_left_outside"].get<long>(), 0);
+  for (const char* file : {"posed/anatomy/reference.json", "posed/patient.glb", "posed/tets.vtu", "posed/skeleton.bvh",
+                           "posed/scan.nii.gz", "posed/organs.nii.gz", "rig/rig.vtu", "rig/meshes/skin.obj"})
+    EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
+  const std::string posedAgain = fresh("demo_pose");
+  const CommandResult again = runVesalius({"pose", "--anatomy", out + "/rig", "--angles", "femur_left=-30,0,0",
+                                           "--method", "cor", "--out", posedAgain, "--progress", "none"});
+  EXPECT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_TRUE(fs::exists(posedAgain + "/liver.obj"));
+}
+
+// Frame 400 of the shipped CMU motion (subject 1, trial 1) retargeted onto the patient's rig: hips and
+// lower back driven. No organ templates, so the run is the rig and the pose.
+TEST(CliPatient, PosedByAFrameOfAMotion) {
+  const std::string out = fresh("motion"), noTemplates = fresh("no_templates");
+  fs::create_directories(noTemplates);
+  const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--organs", kCtLabels, "--organ-table",
+                                       kCtLabelTable, "--templates", noTemplates, "--motion",
+                                       std::string(VESALIUS_TESTDATA) + "/motion/01_01.bvh", "--frame", "400",
+                                       "--out", out, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json pose = readJson(out + "/report.json")["metrics"]["pose"];
+  std::cout << "frame 400: " << pose.dump() << '\n';
+  EXPECT_EQ(pose["motion"]["frame"], 400);
+  EXPECT_EQ(pose["tissue_vertices_left_outside"].get<long>(), 0);
+  // The posed femur label follows its posed bone mesh.
+  const LabelMap posedOrgans = io::readLabelMap(out + "/posed/organs.nii.gz", kCtLabelTable);
+  const ReferenceAnatomy posed = io::readReferenceAnatomy(out + "/posed/anatomy");
+  for (const char* femur : {"femur_left", "femur_right"}) {
+    const auto t = std::find_if(posed.tissues.begin(), posed.tissues.end(), [&](const ReferenceTissue& x) { return x.name == femur; });
+    ASSERT_NE(t, posed.tissues.end()) << femur;
+    const double dice = diceWithLabel(t->mesh, posedOrgans, posedOrgans.table.resolve(femur));
+    std::cout << femur << ": Dice of the re-posed label with the posed mesh " << dice << '\n';
+    EXPECT_GE(dice, 0.90) << femur;
   }
 }
 
@@ -156,6 +200,15 @@ TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
   expectRefused({"patient", "--scan", kCtScan, "--organs", kCtLabels, "--organ-table", table, "--out", out,
                  "--progress", "none"},
                 3, kCtLabels, out);
+  // A pose without a rig: the upper-abdomen labels have no pelvis or femurs.
+  const std::string dir = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/";
+  expectRefused({"patient", "--scan", dir + "example_ct_sm.nii.gz", "--organs", dir + "example_seg.nii.gz",
+                 "--organ-table", dir + "labels_total_v2.tsv", "--pose", "femur_left=-30,0,0", "--out", out,
+                 "--progress", "none"},
+                3, dir + "example_seg.nii.gz", out);
+  // A pose that is not joint angles, before any work.
+  expectRefused({"patient", "--scan", kCtScan, "--pose", "femur_left=-30", "--out", out, "--progress", "none"}, 2,
+                "femur_left", out);
   // An output folder that exists is kept without --force.
   fs::create_directories(out);
   std::ofstream(out + "/keep.txt") << "mine";

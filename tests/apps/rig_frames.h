@@ -1,4 +1,4 @@
-// frames.txt of an anatomy directory (apps/vesalius/anatomy_rig.h): per joint name, its rest world
+// frames.txt of an anatomy directory (io/anatomy_rig_io.h): per joint name, its rest world
 // rotation row by row; for the rig and pose integration tests.
 #pragma once
 

@@ -79,6 +79,21 @@ void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<Or
                                "(TotalSegmentator's names, e.g. liver, hip_left); is the label table the right one?");
 }
 
+// The bones the skeleton cannot do without (the spine is optional) that `organs` lacks, or has no voxel of.
+std::vector<std::string> missingSkeletonBones(const LabelMap& organs, const posing::SkeletonFromBonesOptions& bones) {
+  std::vector<bool> present;
+  for (const Label l : organs.labels.values) {
+    if (std::size_t(l) >= present.size()) present.resize(std::size_t(l) + 1, false);
+    present[std::size_t(l)] = true;
+  }
+  std::vector<std::string> missing;
+  for (const std::string& name : {bones.hipLeft, bones.hipRight, bones.sacrum, bones.femurLeft, bones.femurRight}) {
+    const LabelEntry* e = organs.table.find(name);
+    if (!e || std::size_t(e->id) >= present.size() || !present[std::size_t(e->id)]) missing.push_back(name);
+  }
+  return missing;
+}
+
 }  // namespace
 
 VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
@@ -122,6 +137,18 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
     clock.end("fit " + t.organ);
   }
   patient.anatomy.validate(scanSource);
+
+  if (!options.rig) {
+    patient.noRigBecause = "not asked for";
+  } else if (!organs) {
+    patient.noRigBecause = "no organ map: the skeleton comes from its bone labels";
+  } else if (const std::vector<std::string> missing = missingSkeletonBones(*organs, options.rigging.bones); !missing.empty()) {
+    patient.noRigBecause = "the organ map has no voxels of";
+    for (const std::string& m : missing) patient.noRigBecause += " " + m;
+  } else {
+    patient.rig = rigPatient(patient.tissueClasses, *organs, patient.anatomy, options.rigging, organsSource, progress);
+    clock.end("rig");
+  }
   return patient;
 }
 

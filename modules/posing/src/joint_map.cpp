@@ -51,4 +51,23 @@ JointMap cmuToMakeHumanJointMap() {
   return map;
 }
 
+JointMap cmuToBoneSkeletonJointMap() {
+  JointMap map;
+  map.pairs = {{"Hips", "pelvis"}, {"LeftUpLeg", "femur_left"}, {"RightUpLeg", "femur_right"}, {"LowerBack", "vertebrae_L5"}};
+  return map;
+}
+
+bool isBoneSkeleton(const Skeleton& skeleton) {
+  return skeleton.find("femur_left") >= 0 && skeleton.find("femur_right") >= 0;
+}
+
+JointMap defaultJointMap(const Skeleton& source, const Skeleton& target) {
+  JointMap shared;
+  for (const Joint& joint : target.joints)
+    if (source.find(joint.name) >= 0) shared.pairs.emplace_back(joint.name, joint.name);
+  if (shared.pairs.size() * 2 >= target.joints.size()) return shared;
+  if (isBoneSkeleton(target)) return cmuToBoneSkeletonJointMap();
+  return cmuToMakeHumanJointMap();
+}
+
 }  // namespace vesalius::posing

@@ -9,9 +9,11 @@
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
 //     template fitted by plastic strains to markers on its label (seed 002; organ_fit.h). Without one, the
 //     scan's own bone class as one bone tissue.
+//  4. the rig: with an organ map holding the pelvis (hips, sacrum) and the femurs, the rig of the patient's
+//     body and bones that carries the model (patient_rig.h; seed 001); posePatient then poses it.
 // Not yet (docs/virtual-patient.md): the reference completed outside the field of view and transferred
 // into the patient (seed 000), reference bones registered onto their labels, organs pushed apart where
-// they touch (seed 002 §4.1.4), the rig and the posed patient (seed 001).
+// they touch (seed 002 §4.1.4).
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -19,11 +21,13 @@
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
 #include "vesalius/patient/organ_fit.h"
+#include "vesalius/patient/patient_rig.h"
 #include "vesalius/patient/scan_anatomy.h"
 
 #include <Eigen/Core>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +44,8 @@ struct OrganTemplate {
 struct VirtualPatientOptions {
   ScanAnatomyOptions surfaces;
   OrganFitOptions organFit;
+  bool rig = true;  // rig the model when the organ map has its bones
+  PatientRigOptions rigging;
 };
 
 struct FittedOrgan {
@@ -55,6 +61,8 @@ struct VirtualPatient {
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<FittedOrgan> fits;
+  std::optional<PatientRig> rig;  // none without an organ map holding the pelvis and femurs
+  std::string noRigBecause;       // why there is no rig, in the user's words
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
 };
 

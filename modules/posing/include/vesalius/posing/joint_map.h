@@ -8,6 +8,8 @@
 // Target joints the map does not name keep their rest rotation relative to their parent (retarget.h).
 #pragma once
 
+#include "vesalius/core/skeleton.h"
+
 #include <string>
 #include <string_view>
 #include <utility>
@@ -31,5 +33,19 @@ JointMap parseJointMap(std::string_view text, const std::string& source);
 // the two halves apart about the root in every frame, moving the hips and tearing the lower trunk (skin
 // volume +3.2 % with DQS and -3.4 % with LBS in the T-pose of frame 0 from that alone).
 JointMap cmuToMakeHumanJointMap();
+
+// CMU names onto the skeleton of a scan's segmented bones (skeleton_from_bones.h: pelvis, femur_left,
+// femur_right, vertebrae_L5 upward): the hips drive the pelvis, the thighs the femurs, the lower back the
+// lowest vertebra, which carries the ones above it. A scan shows no more of the body, so nothing else is
+// driven.
+JointMap cmuToBoneSkeletonJointMap();
+
+// Whether `skeleton` is a scan's bone skeleton (skeleton_from_bones.h): it has femur_left and femur_right.
+bool isBoneSkeleton(const Skeleton& skeleton);
+
+// The map a motion needs when none is given: the names `source` and `target` share when at least half of
+// the target's joints are among them (a pose written for the same skeleton), else CMU's names onto the
+// scan-bone skeleton when the target is one, else CMU's onto MakeHuman's.
+JointMap defaultJointMap(const Skeleton& source, const Skeleton& target);
 
 }  // namespace vesalius::posing

@@ -1,4 +1,5 @@
-// The rig of an anatomy directory, as `vesalius rig` writes it and `vesalius pose` reads it (docs/cli.md):
+// The folder of an anatomy rig (core/anatomy_rig.h), as `vesalius rig` and `vesalius patient` write it and
+// `vesalius pose` reads it (docs/cli.md):
 //   DIR/rig.vtu        rest tet mesh of the body (mm, LPS); point data "bone" (column of the vertex's bone
 //                      in "weights", -1 for tissue), "weights" (#V by #B, seed 001 §3.3), with
 //                      `rig --cor-centres` "cor_centre" (#V by 3, centres of rotation, §3.5);
@@ -14,35 +15,27 @@
 // milliseconds, while the weights and centres stored here take the seconds.
 #pragma once
 
+#include "vesalius/core/anatomy_rig.h"
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/mesh.h"
 #include "vesalius/core/skeleton.h"
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <string>
+#include <utility>
 #include <vector>
 
-namespace vesalius::cli {
+namespace vesalius::io {
 
-struct AnatomyRig {
-  TetMesh tets;                     // rest; vertex attributes "bone", "weights" (and "cor_centre")
-  Skeleton skeleton;                // rest, mm LPS
-  std::vector<int> boneJoint;       // #B: the joint of each weight column
-  std::vector<std::string> meshes;  // paths of DIR/meshes/*, sorted
-
-  const Eigen::MatrixXd& weights() const { return tets.vertexAttributes.real.at("weights"); }
-  // Throws BadInput naming rig.vtu if the rig was made without --cor-centres.
-  MatrixX3d centres() const;
-  const Eigen::VectorXi& boneOfVertex() const { return tets.vertexAttributes.integer.at("bone"); }
-};
-
-// Writes rig.vtu, bones.txt, skeleton.bvh and meshes/<name> for each (name, mesh) into `dir` (created).
-// Every file atomically; existing ones kept unless options.force (UsageError).
+// Writes rig.vtu, bones.txt, skeleton.bvh (and frames.txt) and meshes/<name> for each (name, mesh) into
+// `dir` (created); names are made safe file names, their extensions pick the format. Every file atomically;
+// existing ones kept unless options.force (UsageError).
 void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
                      const std::vector<std::pair<std::string, TriMesh>>& meshes, const WriteOptions& options);
 
-// Throws BadInput naming the file that is missing or does not match the others.
+// The rig of `dir`, its meshes as their paths (sorted). Throws BadInput naming the file that is missing or
+// does not match the others.
 AnatomyRig readAnatomyRig(const std::string& dir);
 
 // The posed skeleton as BVH: `rest`'s hierarchy with one frame whose channels give `posedWorld`. BVH
@@ -50,4 +43,4 @@ AnatomyRig readAnatomyRig(const std::string& dir);
 // rest-to-posed map posedWorld_j · restWorld_j⁻¹ (the skinning transform, which is thus kept).
 Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isometry3d>& posedWorld);
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::io

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace vesalius::cli {
+namespace vesalius::rigging {
 
 struct LabelRegionOptions {
   int body = 0;                        // region label of the body around the labels; 0: no body region
@@ -60,4 +60,4 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
                                                         const LabelRegionOptions& options, const std::string& source,
                                                         Progress* progress = nullptr);
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::rigging

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace vesalius::cli {
+namespace vesalius::rigging {
 
 // The body mask above on `grid`. Throws BadInput naming `source` if the skin is open or empty.
 segmentation::Mask skinInsideMask(const TriMesh& skin, const GridGeometry& grid, const std::string& source);
@@ -34,4 +34,4 @@ struct BoneMeshes {
 LabelMap boneMeshLabelMap(const TriMesh& skin, const std::vector<BoneMeshes>& bones, const GridGeometry& grid,
                           const std::string& source);
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::rigging

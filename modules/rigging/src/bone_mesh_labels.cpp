@@ -1,11 +1,11 @@
 // The labelled image of a body's skin and bone meshes (bone_mesh_labels.h).
-#include "bone_mesh_labels.h"
+#include "vesalius/rigging/bone_mesh_labels.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/winding_mask.h"
 
-namespace vesalius::cli {
+namespace vesalius::rigging {
 
 segmentation::Mask skinInsideMask(const TriMesh& skin, const GridGeometry& grid, const std::string& source) {
   try {
@@ -42,4 +42,4 @@ LabelMap boneMeshLabelMap(const TriMesh& skin, const std::vector<BoneMeshes>& bo
   return map;
 }
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::rigging

@@ -1,11 +1,11 @@
-#include "label_regions.h"
+#include "vesalius/rigging/label_regions.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
 
-namespace vesalius::cli {
+namespace vesalius::rigging {
 
 // With no points added on the surfaces (-Y) and TetGen's radius-edge bound 1.5, the tets are those the
 // surface triangles need, about 3-4 per surface face when each surface meets its budget (rig --labels of
@@ -153,4 +153,4 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
   return regions;
 }
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::rigging

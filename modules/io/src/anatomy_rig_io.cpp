@@ -1,4 +1,4 @@
-#include "anatomy_rig.h"
+#include "vesalius/io/anatomy_rig_io.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/safe_file_name.h"
@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace vesalius::cli {
+namespace vesalius::io {
 
 Motion posedSkeletonMotion(const Skeleton& rest, const std::vector<Eigen::Isometry3d>& posedWorld) {
   // BVH offsets carry no rotation: the file's skeleton has the joints' rest positions with unrotated frames,
@@ -76,7 +76,7 @@ void writeFrames(const std::string& path, const Skeleton& skeleton, const WriteO
 // joint's position and tail.
 void readFrames(const std::string& path, Skeleton& skeleton) {
   std::vector<Eigen::Isometry3d> world = skeleton.restWorld();
-  std::istringstream lines(io::readTextFile(path));
+  std::istringstream lines(readTextFile(path));
   for (std::string line; std::getline(lines, line);) {
     std::istringstream in(line);
     std::string name;
@@ -98,18 +98,10 @@ void readFrames(const std::string& path, Skeleton& skeleton) {
 
 }  // namespace
 
-MatrixX3d AnatomyRig::centres() const {
-  const auto found = tets.vertexAttributes.real.find("cor_centre");
-  if (found == tets.vertexAttributes.real.end() || found->second.cols() != 3)
-    throw BadInput("rig.vtu", "has no centres of rotation for CoR skinning (it was made with --no-cor-centres; "
-                              "run `vesalius rig` without it)");
-  return found->second;
-}
-
 void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
                      const std::vector<std::pair<std::string, TriMesh>>& meshes, const WriteOptions& options) {
   fs::create_directories(fs::path(dir) / "meshes");
-  io::writeTetMesh(dir + "/rig.vtu", rig.tets, io::MeshWriteOptions{options});
+  writeTetMesh(dir + "/rig.vtu", rig.tets, MeshWriteOptions{options});
   writeAtomically(dir + "/bones.txt", options, [&](const std::string& path) {
     std::ofstream out(path);
     for (int j : rig.boneJoint) out << rig.skeleton.joints[j].name << '\n';
@@ -117,14 +109,14 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
     if (!out) throw BadInput(path, "cannot write");
   });
   std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();
-  io::writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), options);
+  writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), options);
   if (hasRotatedFrames(rig.skeleton)) writeFrames(dir + "/frames.txt", rig.skeleton, options);
   // Mesh names come from label tables and reference.json: their stems are made safe (their extensions are
   // the writer's format).
   for (const auto& [name, mesh] : meshes) {
     const fs::path file(name);
-    io::writeTriMesh(dir + "/meshes/" + safeFileName(file.stem().string()) + file.extension().string(), mesh,
-                     io::MeshWriteOptions{options});
+    writeTriMesh(dir + "/meshes/" + safeFileName(file.stem().string()) + file.extension().string(), mesh,
+                     MeshWriteOptions{options});
   }
 }
 
@@ -133,10 +125,10 @@ AnatomyRig readAnatomyRig(const std::string& dir) {
   const std::string tetsPath = dir + "/rig.vtu", bonesPath = dir + "/bones.txt";
   for (const std::string& p : {tetsPath, bonesPath, dir + "/skeleton.bvh"})
     if (!fs::exists(p)) throw BadInput(p, "missing (make the anatomy directory with `vesalius rig`)");
-  rig.tets = io::readTetMesh(tetsPath);
-  rig.skeleton = io::readBvh(dir + "/skeleton.bvh").skeleton;
+  rig.tets = readTetMesh(tetsPath);
+  rig.skeleton = readBvh(dir + "/skeleton.bvh").skeleton;
   if (fs::exists(dir + "/frames.txt")) readFrames(dir + "/frames.txt", rig.skeleton);
-  std::istringstream names(io::readTextFile(bonesPath));
+  std::istringstream names(readTextFile(bonesPath));
   for (std::string name; std::getline(names, name);) {
     if (name.empty()) continue;
     const int j = rig.skeleton.find(name);
@@ -156,4 +148,4 @@ AnatomyRig readAnatomyRig(const std::string& dir) {
   return rig;
 }
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::io

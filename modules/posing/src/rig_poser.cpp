@@ -1,0 +1,63 @@
+#include "vesalius/posing/rig_poser.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/posing/cor_skinning.h"
+#include "vesalius/posing/corotational_fem.h"
+#include "vesalius/posing/dual_quaternion_skinning.h"
+#include "vesalius/posing/linear_blend_skinning.h"
+#include "vesalius/posing/skeleton_pose.h"
+
+#include <filesystem>
+
+namespace vesalius::posing {
+
+bool isSkinningMethod(const std::string& method) {
+  return method == "lbs" || method == "dqs" || method == "cor" || method == "fem";
+}
+
+RigPoser::RigPoser(AnatomyRig rig, std::vector<TriMesh> meshes, bool untangle, bool restoreVolume)
+    : rig_(std::move(rig)), meshes_(std::move(meshes)) {
+  if (meshes_.size() != rig_.meshes.size())
+    throw UsageError("RigPoser: " + std::to_string(meshes_.size()) + " meshes for the rig's " +
+                     std::to_string(rig_.meshes.size()) + " names");
+  for (const TriMesh& mesh : meshes_) embeddings_.push_back(embedInTets(rig_.tets.V, rig_.tets.T, mesh.V));
+  if (rig_.hasCentres()) centres_ = rig_.centres();
+  if (restoreVolume) restore_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
+  if (untangle) untangle_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
+}
+
+int RigPoser::meshIndex(const std::string& stem) const {
+  for (std::size_t m = 0; m < rig_.meshes.size(); ++m)
+    if (std::filesystem::path(rig_.meshes[m]).stem() == stem) return int(m);
+  return -1;
+}
+
+RigPoser::Repairs RigPoser::skinTets(const std::vector<Eigen::Isometry3d>& world, const std::string& method,
+                                     MatrixX3d& tets) const {
+  if (!isSkinningMethod(method)) throw UsageError("skinning method must be lbs, dqs, cor or fem, not " + method);
+  const std::vector<Eigen::Isometry3d> all = restToPosed(rig_.skeleton, world);
+  std::vector<Eigen::Isometry3d> bones;
+  for (int j : rig_.boneJoint) bones.push_back(all[j]);
+  const MatrixX3d& V = rig_.tets.V;
+  if (method == "lbs") {
+    linearBlendSkinning(V, rig_.weights(), bones, tets);
+  } else if (method == "dqs") {
+    dualQuaternionSkinning(V, rig_.weights(), bones, tets);
+  } else if (method == "cor") {
+    if (centres_.rows() == 0) rig_.centres();  // throws the rig's BadInput: made without centres
+    corSkinning(V, rig_.weights(), centres_, bones, tets);
+  } else {
+    tets = corotationalFem(V, rig_.tets.T, rig_.boneOfVertex(), bones).V;
+  }
+  Repairs repairs;
+  if (restore_) repairs.restore = (*restore_)(tets);
+  if (untangle_) repairs.untangle = (*untangle_)(tets);
+  return repairs;
+}
+
+void RigPoser::carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const {
+  carried.resize(embeddings_.size());
+  for (std::size_t m = 0; m < embeddings_.size(); ++m) embeddings_[m].apply(tets, carried[m]);
+}
+
+}  // namespace vesalius::posing

@@ -1,0 +1,296 @@
+#include "vesalius/rigging/body_rig.h"
+
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/meshing/label_surface.h"
+#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/tetrahedralize.h"
+#include "vesalius/posing/bone_vertices.h"
+#include "vesalius/posing/bone_weights.h"
+#include "vesalius/posing/rotation_centers.h"
+#include "vesalius/rigging/bone_mesh_labels.h"
+#include "vesalius/rigging/label_regions.h"
+#include "vesalius/segmentation/label_edit.h"
+#include "vesalius/segmentation/label_ops.h"
+#include "vesalius/segmentation/label_resample.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+namespace vesalius::rigging {
+
+namespace {
+
+// Runs `stage`, adding its wall time to rig.stageSeconds under `name`.
+template <class F>
+void timed(BuiltRig& rig, const std::string& name, F&& stage) {
+  const auto start = std::chrono::steady_clock::now();
+  stage();
+  rig.stageSeconds.emplace_back(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
+// The grid of the voxelized body: --voxel-size, grown if needed to stay under the seed's cap (§3.2).
+GridGeometry bodyGrid(const TriMesh& skin, const RigOptions& o) {
+  meshing::CoveringGridOptions grid;
+  grid.voxelSizeMm = o.voxelSize;
+  return meshing::coveringGrid({&skin}, grid);
+}
+
+// Seed 001 §3.2: the inside of the skin as a voxel image under the size cap (bone_mesh_labels.h), its
+// surface (closed, free of self-crossings, which TetGen needs and an artist's mesh need not be), then TetGen.
+TetMesh bodyTets(const TriMesh& skin, const RigOptions& o, const std::string& source) {
+  const segmentation::Mask inside = skinInsideMask(skin, bodyGrid(skin, o), source);
+  meshing::TetrahedralizeOptions tet;
+  tet.targetTets = o.targetTets;
+  // The voxel surface has about a triangle per boundary voxel face, which TetGen would keep and refine
+  // around (900k tets for a target of 30k at 8 mm voxels); decimated to a quarter of the target, the
+  // tet count follows the target.
+  meshing::SurfaceOptions surface;
+  surface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
+  const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
+  return meshing::tetrahedralizeRegions({{meshing::labelSurface(body, 1, surface), 1, source + " (voxelized)"}}, tet);
+}
+
+// Bone columns: the joints whose capsule holds a vertex, in skeleton order; "bone" becomes the column.
+std::vector<int> compactBones(Eigen::VectorXi& boneOfVertex, int joints) {
+  std::vector<int> column(joints, -1), boneJoint;
+  for (Eigen::Index v = 0; v < boneOfVertex.size(); ++v)
+    if (boneOfVertex[v] >= 0) column[boneOfVertex[v]] = 0;
+  for (int j = 0; j < joints; ++j)
+    if (column[j] == 0) {
+      column[j] = int(boneJoint.size());
+      boneJoint.push_back(j);
+    }
+  for (Eigen::Index v = 0; v < boneOfVertex.size(); ++v)
+    if (boneOfVertex[v] >= 0) boneOfVertex[v] = column[boneOfVertex[v]];
+  return boneJoint;
+}
+
+// Weights and (optionally) centres of rotation of built.rig.tets for the bone regions `bone`.
+void weighRig(BuiltRig& built, const Eigen::VectorXi& bone, const RigOptions& o, Progress& progress) {
+  TetMesh& tets = built.rig.tets;
+  timed(built, "weights", [&] {
+    progress.begin("weights", "Laplace bone weights");
+    tets.vertexAttributes.real["weights"] = posing::computeBoneWeights(tets.V, tets.T, bone);
+    progress.end();
+  });
+  if (o.corCentres)
+    timed(built, "rotation_centres", [&] {
+      progress.begin("centres", "CoR centres of rotation");
+      tets.vertexAttributes.real["cor_centre"] =
+          posing::computeRotationCenters(tets.V, tets.T, tets.vertexAttributes.real["weights"]);
+      progress.end();
+    });
+  tets.vertexAttributes.integer["bone"] = bone;
+}
+
+// The smallest positive label that is no bone's: the rest of the body.
+Label bodyLabel(const std::vector<std::vector<Label>>& boneLabels) {
+  std::vector<bool> taken(65536, false);
+  for (const auto& labels : boneLabels)
+    for (Label l : labels) taken[l] = true;
+  Label body = 1;
+  while (taken[body]) ++body;
+  return body;
+}
+
+// Seed 001 §3.2 from a label map: only the bones' box grown by `margin` is meshed (the body is cut flat
+// at its sides), resampled (nearest neighbour) to voxels of at least `voxelSize` and within the seed's
+// 250x700x120.
+LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double margin, double voxelSize) {
+  std::vector<bool> isBone(65536, false);
+  for (const auto& labels : bones.labels)
+    for (Label l : labels) isBone[l] = true;
+  segmentation::Mask bone(map.labels.geometry, 0);
+  for (std::size_t v = 0; v < bone.values.size(); ++v) bone.values[v] = isBone[map.labels.values[v]];
+  LabelMap box = segmentation::cropLabelMap(map, segmentation::maskBounds(bone, margin));
+  // At most one voxel per voxelSize along each axis, and within the seed's cap (LPS order).
+  const GridGeometry& g = box.labels.geometry;
+  Eigen::Vector3i cap = meshing::CoveringGridOptions{}.maxSize;
+  for (int d = 0; d < 3; ++d) {
+    Eigen::Index lps;
+    g.direction.col(d).cwiseAbs().maxCoeff(&lps);
+    cap[lps] = std::min(cap[lps], std::max(1, int(std::ceil(g.size[d] * g.spacing[d] / voxelSize))));
+  }
+  const GridGeometry capped = segmentation::cappedGeometry(g, cap);
+  return capped.size == g.size ? box : segmentation::resampleLabels(box, capped);
+}
+
+// The body (every labelled voxel, made solid) as the outer region and each bone label nested in it, as
+// `tetmesh --labels --body` makes them (label_regions.h); decimated, since TetGen keeps every boundary
+// triangle. Each bone is first grown by a voxel into the tissue around it (not into other bones): plates a
+// voxel or two thick (the iliac wings at 4 mm) would otherwise be two sheets so close that TetGen's quality
+// refinement fills them and the body around them with tets (0.93M tets instead of 0.68M for 20k asked).
+// A map that labels the whole body (solidBody false: rig --reference) grows its bones into the body only
+// and keeps the body's shape; a CT's map labels organs and bones, so its body is every labelled voxel made
+// solid and its bones grow into the unlabelled soft tissue too.
+// A CT's bones (solidBody) then get the surface budgets of budgetSurfaces (within 2x of the target), their
+// gaps narrower than two voxels closed and only their largest parts: quadric decimation tore the test CT's
+// sacrum (its foramina and thin parts at 4 mm) at every budget up to twice its own, and the topology-keeping
+// fallback stopped at 2,634 faces, 10,642 tets inside it and as many around it. The reference's bones keep a
+// quarter of the target on the body and another shared equally by the bones, at least 300 faces each: with
+// the budgets, the flexed left femur's mesh was 2.3-5.3 mm off its rigid turn (the test's bound is 2 mm;
+// docs/methods/posing.md, Not yet).
+std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<std::vector<Label>>& boneLabels,
+                                                Label body, bool solidBody, const RigOptions& o,
+                                                const std::string& source, Progress& progress) {
+  std::vector<Label> ids;
+  for (const auto& labels : boneLabels) ids.insert(ids.end(), labels.begin(), labels.end());
+  std::vector<bool> isBone(65536, false);
+  for (Label l : ids) isBone[l] = true;
+  const Grid<Label> rest = box.labels;
+  const double voxel = box.labels.geometry.spacing.maxCoeff();
+  for (Label l : ids) {
+    segmentation::Mask grown = segmentation::dilateMm(segmentation::maskOf(rest, l), voxel);
+    if (solidBody) grown = segmentation::closeMm(grown, voxel);
+    for (std::size_t v = 0; v < grown.values.size(); ++v)
+      if (grown.values[v] && !isBone[rest.values[v]] && (solidBody || rest.values[v] != 0)) box.labels.values[v] = l;
+  }
+  LabelRegionOptions regions;
+  regions.body = body;
+  regions.solidBody = solidBody;
+  if (!solidBody) {
+    regions.bodySurface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
+    regions.labelSurface.targetFaces = int(std::max<long>(300, o.targetTets / 4 / long(ids.size())));
+    return labelRegionSurfaces(box, ids, regions, source, &progress);
+  }
+  regions.largestPartOnly = true;
+  // A coarse body surface can cut a bone a voxel below it (the test CT's body at 3,562 faces crossed
+  // hip_right at 10 triangle pairs); finer budgets then, and TetGen names the crossing if they stay.
+  std::vector<meshing::RegionSurface> surfaces;
+  long budget = o.targetTets;
+  for (int attempt = 0; attempt < 4; ++attempt, budget = budget * 3 / 2) {
+    budgetSurfaces(regions, budget);
+    surfaces = labelRegionSurfaces(box, ids, regions, source, &progress);
+    if (!meshing::surfacesCross(surfaces)) break;
+  }
+  return surfaces;
+}
+
+// Seed 001 §3.2-3.3 from the nested region surfaces of the body and its bones: TetGen, each bone's region
+// the vertices of its tets (boneLabels: per joint of the skeleton, the labels of its bone), weights, centres.
+void rigOfRegions(BuiltRig& built, const std::vector<meshing::RegionSurface>& regions,
+                  const std::vector<std::vector<Label>>& boneLabels, const RigOptions& o, Progress& progress) {
+  AnatomyRig& rig = built.rig;
+  timed(built, "tetrahedralize", [&] {
+    progress.begin("tetrahedralize", "TetGen");
+    meshing::TetrahedralizeOptions tet;
+    tet.targetTets = o.targetTets;
+    // No Steiner points on the surfaces (TetGen -Y): on the decimated body and bone surfaces, TetGen's
+    // splitting of the surface triangles that its refinement points encroach on made nearly all the tets
+    // (the test CT at --target-tets 20000: 707,544 tets at the first volume bound, 57,723 with -Y;
+    // docs/methods/tetrahedral-meshes.md).
+    tet.keepSurface = true;
+    rig.tets = meshing::tetrahedralizeRegions(regions, tet);
+    progress.end();
+  });
+  Eigen::VectorXi bone =
+      posing::boneVerticesOfLabels(rig.tets.T, rig.tets.tetAttributes.integer.at(kLabel), boneLabels, rig.tets.V.rows());
+  rig.boneJoint = compactBones(bone, int(rig.skeleton.joints.size()));
+  weighRig(built, bone, o, progress);
+}
+
+// The OpenSim bodies that have no joint in skeletonFromBoneMeshes but move rigidly with one: the foot
+// (calcaneus, toes) with the talus, as there are no subtalar and toe joints; the radius with the ulna (the
+// forearm is one bone, no radioulnar joint); the "skull" group (the torso's skull and jaw, which
+// `reference full-body` groups apart) with the torso. Other bodies are their joint (the patellae have
+// none: they follow the weights).
+std::string jointOfBody(const std::string& body) {
+  if (body == io::kSkullGroup) return "torso";
+  for (const char* foot : {"calcn_", "toes_"})
+    if (body.rfind(foot, 0) == 0) return "talus_" + body.substr(std::strlen(foot));
+  if (body.rfind("radius_", 0) == 0) return "ulna_" + body.substr(std::strlen("radius_"));
+  return body;
+}
+
+// Seed 001 §3.2 for a reference anatomy: its skin and, per joint, the bone meshes of the joint's OpenSim
+// body (the tissues' group, jointOfBody) voxelized into one label map (bone_mesh_labels.h: label j + 1
+// for joint j), then nested region surfaces as for --labels. boneLabels: per joint its label, none for a
+// joint with no bone voxel (a hand outside the skin at coarse voxels would have none).
+std::vector<meshing::RegionSurface> referenceRegions(const ReferenceAnatomy& reference, const Skeleton& skeleton,
+                                                     std::vector<std::vector<Label>>& boneLabels, const RigOptions& o,
+                                                     const std::string& source, Progress& progress) {
+  std::vector<BoneMeshes> bones(skeleton.joints.size());
+  for (std::size_t j = 0; j < bones.size(); ++j) bones[j].name = skeleton.joints[j].name;
+  for (const ReferenceTissue& t : reference.tissues) {
+    const int j = skeleton.find(jointOfBody(t.group));
+    if (j >= 0) bones[std::size_t(j)].meshes.push_back(&t.mesh);
+  }
+  const LabelMap map = boneMeshLabelMap(reference.skin, bones, bodyGrid(reference.skin, o), source);
+  std::vector<long> voxels(bones.size() + 2, 0);
+  for (Label l : map.labels.values) ++voxels[l];
+  boneLabels.assign(bones.size(), {});
+  for (std::size_t j = 0; j < bones.size(); ++j)
+    if (voxels[j + 1] > 0) boneLabels[j] = {Label(j + 1)};
+  return boneRegions(map, boneLabels, Label(bones.size() + 1), false, o, source, progress);
+}
+
+}  // namespace
+
+BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const RigOptions& options,
+                         const std::string& source, Progress* progress) {
+  Progress none;
+  Progress& p = progress ? *progress : none;
+  BuiltRig built;
+  built.rig.skeleton = skeleton;
+  timed(built, "tetrahedralize", [&] {
+    p.begin("tetrahedralize", "voxelize the skin, surface it, TetGen");
+    built.rig.tets = bodyTets(skin, options, source);
+    p.end();
+  });
+  Eigen::VectorXi bone = posing::boneCapsuleVertices(built.rig.tets.V, skeleton, skin, options.capsules);
+  built.rig.boneJoint = compactBones(bone, int(skeleton.joints.size()));
+  weighRig(built, bone, options, p);
+  return built;
+}
+
+BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBonesOptions& bonesOptions,
+                           const RigOptions& options, const std::string& source, Progress* progress) {
+  Progress none;
+  Progress& p = progress ? *progress : none;
+  const posing::BoneSkeleton bones = posing::skeletonFromBones(labels, bonesOptions, source);
+  const Label body = bodyLabel(bones.labels);
+  BuiltRig built;
+  built.rig.skeleton = bones.skeleton;
+  built.femoralHeadRadiusLeft = bones.femoralHeadLeft.radius;
+  built.femoralHeadRadiusRight = bones.femoralHeadRight.radius;
+  std::vector<meshing::RegionSurface> regions;
+  timed(built, "surfaces", [&] {
+    p.begin("surfaces", "the body and its bones, nested");
+    regions = boneRegions(bonesBox(labels, bones, options.margin, options.voxelSize), bones.labels, body, true,
+                          options, source, p);
+    p.end();
+  });
+  rigOfRegions(built, regions, bones.labels, options, p);
+  for (meshing::RegionSurface& r : regions) {
+    const LabelEntry* entry = labels.table.find(Label(r.label));
+    built.regionSurfaces.emplace_back((r.label == body || !entry ? "skin" : entry->name) + ".vtp", std::move(r.surface));
+  }
+  return built;
+}
+
+BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::SkeletonFromBoneMeshesOptions& bonesOptions,
+                          const RigOptions& options, const std::string& source, Progress* progress) {
+  Progress none;
+  Progress& p = progress ? *progress : none;
+  std::map<std::string, TriMesh> byName;
+  for (const ReferenceTissue& t : reference.tissues) byName.emplace(t.name, t.mesh);
+  const posing::MeshSkeleton bones = posing::skeletonFromBoneMeshes(byName, bonesOptions, source);
+  BuiltRig built;
+  built.rig.skeleton = bones.skeleton;
+  built.femoralHeadRadiusLeft = bones.left.femoralHead.radius;
+  built.femoralHeadRadiusRight = bones.right.femoralHead.radius;
+  std::vector<std::vector<Label>> boneLabels;
+  std::vector<meshing::RegionSurface> regions;
+  timed(built, "surfaces", [&] {
+    p.begin("surfaces", "skin and bone meshes voxelized; the body and its bones, nested");
+    regions = referenceRegions(reference, built.rig.skeleton, boneLabels, options, source, p);
+    p.end();
+  });
+  rigOfRegions(built, regions, boneLabels, options, p);
+  return built;
+}
+
+}  // namespace vesalius::rigging
