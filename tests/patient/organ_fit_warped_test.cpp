@@ -181,7 +181,9 @@ TEST_P(OrganFitWarped, LibraryOrgansFitTheWarpedLabels) {
 }
 
 INSTANTIATE_TEST_SUITE_P(TwoWarps, OrganFitWarped, ::testing::Values(0, 1),
-                         [](const ::testing::TestParamInfo<int>& info) { return testPatients()[std::size_t(info.param)].name; });
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return testPatients()[std::size_t(info.param)].name;
+                         });
 
 }  // namespace
 }  // namespace vesalius::test

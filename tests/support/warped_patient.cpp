@@ -113,7 +113,8 @@ WarpedPatient warpPatient(const Image& ct, const LabelMap& labels, const std::ve
     const Eigen::Vector3d& s = source[std::size_t(v)];
     out.ct.values[std::size_t(v)] = float(sampleTrilinear(ct, s));
     const Eigen::Vector3i r(int(std::lround(s.x())), int(std::lround(s.y())), int(std::lround(s.z())));
-    out.labels.labels.values[std::size_t(v)] = g.contains(r.x(), r.y(), r.z()) ? labels.labels.at(r.x(), r.y(), r.z()) : 0;
+    out.labels.labels.values[std::size_t(v)] =
+        g.contains(r.x(), r.y(), r.z()) ? labels.labels.at(r.x(), r.y(), r.z()) : Label(0);
   });
 
   // det ∂φ⁻¹/∂y by central differences (one-sided at the grid's faces) in index space, where the grid's

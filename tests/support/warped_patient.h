@@ -11,9 +11,9 @@
 // the flow is exactly x ↦ c + diag(s)(x - c) + t: the organ's core is scaled by s about its centroid and
 // shifted by t; its rim, where w_o falls, less, so the organ is bent as well as scaled, and the tissue
 // around follows smoothly. Where the organs' weights sum past 1 their velocities are averaged with those
-// weights (else added), so that neighbouring organs' scales do not compound. Images are resampled by backward mapping (each
-// output voxel centre traced back along the flow by RK4): labels nearest-neighbour (background where the
-// point left the scan), HU trilinear (edge values extend beyond the scan).
+// weights (else added), so that neighbouring organs' scales do not compound. Images are resampled by
+// backward mapping (each output voxel centre traced back along the flow by RK4): labels nearest-neighbour
+// (background where the point left the scan), HU trilinear (edge values extend beyond the scan).
 #pragma once
 
 #include "vesalius/core/grid.h"
