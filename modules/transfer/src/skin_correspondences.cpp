@@ -47,7 +47,20 @@ std::vector<std::vector<int>> skinNeighbours(Eigen::Index vertexCount, const Mat
 }
 
 Target makeTarget(const MatrixX3d& Vt, const MatrixX3i& Ft) {
-  return Target{Vt, TriangleTree(Vt, Ft), faceNormals(Vt, Ft), vertexNormals(Vt, Ft)};
+  return Target{Vt, TriangleTree(Vt, Ft), faceNormals(Vt, Ft), vertexNormals(Vt, Ft), {}, {}, 0};
+}
+
+Target makePartialTarget(const MatrixX3d& Vt, const MatrixX3i& Ft, const std::vector<int>& cut,
+                         double reciprocalToleranceMm) {
+  Target t = makeTarget(Vt, Ft);
+  t.cutVertex.assign(std::size_t(Vt.rows()), 0);
+  for (const int v : cut) t.cutVertex[std::size_t(v)] = 1;
+  t.cutFace.assign(std::size_t(Ft.rows()), 0);
+  for (Eigen::Index f = 0; f < Ft.rows(); ++f)
+    t.cutFace[std::size_t(f)] = t.cutVertex[std::size_t(Ft(f, 0))] || t.cutVertex[std::size_t(Ft(f, 1))] ||
+                                t.cutVertex[std::size_t(Ft(f, 2))];
+  t.reciprocalToleranceMm = reciprocalToleranceMm;
+  return t;
 }
 
 // forward: the closest points on the target of the rows of X.
@@ -57,15 +70,30 @@ std::vector<Pair> correspondences(const MatrixX3d& X, const MatrixX3i& Fs, const
   const double minCos = std::cos(options.maxNormalAngleDeg * kPi / 180) - 1e-12;
   const MatrixX3d sourceNormals = vertexNormals(X, Fs);
   std::vector<Pair> pairs;
-  for (Eigen::Index v = 0; v < X.rows(); ++v)
-    if (sourceNormals.row(v).dot(target.faceNormals.row(forward[v].face)) >= minCos)
-      pairs.push_back({{int(v), int(v), int(v)}, Eigen::Vector3d(1, 0, 0), forward[v].point, 1.0});
+  // A partial target: how near the source surface comes to each forward pair's target point.
+  std::vector<ClosestPoint> reciprocal;
+  if (target.partial()) {
+    MatrixX3d P(X.rows(), 3);
+    for (Eigen::Index v = 0; v < X.rows(); ++v) P.row(v) = forward[v].point.transpose();
+    reciprocal = TriangleTree(X, Fs).closest(P);
+  }
+  for (Eigen::Index v = 0; v < X.rows(); ++v) {
+    if (sourceNormals.row(v).dot(target.faceNormals.row(forward[v].face)) < minCos) continue;
+    if (target.partial()) {
+      if (target.cutFace[std::size_t(forward[v].face)]) continue;
+      if (std::sqrt(forward[v].squaredDistance) >
+          std::sqrt(reciprocal[std::size_t(v)].squaredDistance) + target.reciprocalToleranceMm)
+        continue;
+    }
+    pairs.push_back({{int(v), int(v), int(v)}, Eigen::Vector3d(1, 0, 0), forward[v].point, 1.0});
+  }
   if (options.symmetric) {
     const TriangleTree sourceTree(X, Fs);
     const MatrixX3d sourceFaceNormals = faceNormals(X, Fs);
     const std::vector<ClosestPoint> backward = sourceTree.closest(target.V);
     const double weight = double(X.rows()) / double(target.V.rows());  // both directions weigh the same
     for (Eigen::Index t = 0; t < target.V.rows(); ++t) {
+      if (target.partial() && target.cutVertex[std::size_t(t)]) continue;
       const ClosestPoint& c = backward[t];
       if (target.vertexNormals.row(t).dot(sourceFaceNormals.row(c.face)) >= minCos)
         pairs.push_back({{Fs(c.face, 0), Fs(c.face, 1), Fs(c.face, 2)}, c.barycentric, target.V.row(t), weight});

@@ -27,7 +27,9 @@ void checkMesh(const MatrixX3d& V, const MatrixX3i& F, const std::string& name) 
   TriMesh{V, F, {}, {}, {}, {}}.validate("skin registration " + name);
 }
 
-void checkOptions(const SkinRegistrationOptions& o) {
+}  // namespace
+
+void detail::checkOptions(const SkinRegistrationOptions& o) {
   const auto usage = [](const std::string& what) { throw UsageError("skin registration: " + what); };
   if (o.iterations < 1) usage("iterations must be at least 1");
   if (!(o.stiffnessStart >= 0 && o.stiffnessStart <= 1 && o.stiffnessEnd >= 0 && o.stiffnessEnd <= o.stiffnessStart))
@@ -38,6 +40,8 @@ void checkOptions(const SkinRegistrationOptions& o) {
   if (o.alignIterations < 0) usage("alignment iterations must not be negative");
   if (!(o.landmarkWeight >= 0 && std::isfinite(o.landmarkWeight))) usage("the landmark weight must be >= 0");
 }
+
+namespace {
 
 void checkLandmarks(const std::vector<SkinLandmark>& landmarks, Eigen::Index vertexCount) {
   for (std::size_t l = 0; l < landmarks.size(); ++l) {
@@ -194,7 +198,36 @@ MatrixX3d shapeMatchingGoals(const MatrixX3d& Q, const MatrixX3d& Y, const Rings
   return G;
 }
 
-// Mean and largest distance of the points to their closest points.
+}  // namespace
+
+fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+                                   const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
+  detail::checkOptions(options);
+  checkMesh(Vs, Fs, "source skin");
+  checkMesh(Vt, Ft, "target skin");
+  checkLandmarks(landmarks, Vs.rows());
+  return similarityAlignment(Vs, Fs, Ft, detail::makeTarget(Vt, Ft), landmarks, options);
+}
+
+SkinRegistration registerSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+                              const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
+  detail::checkOptions(options);
+  checkMesh(Vs, Fs, "source skin");
+  checkMesh(Vt, Ft, "target skin");
+  checkLandmarks(landmarks, Vs.rows());
+  const Target target = detail::makeTarget(Vt, Ft);
+
+  SkinRegistration result;
+  if (options.align) result.alignment = similarityAlignment(Vs, Fs, Ft, target, landmarks, options);
+  std::vector<char> reached;
+  result.V = detail::deformOntoTarget(result.alignment.apply(Vs), Fs, target, landmarks, options, result.meanDistance,
+                                      reached);
+  std::tie(result.finalMeanDistance, result.finalMaxDistance) = detail::distances(target.tree.closest(result.V));
+  return result;
+}
+
+namespace detail {
+
 std::pair<double, double> distances(const std::vector<ClosestPoint>& closest) {
   double sum = 0, largest = 0;
   for (const ClosestPoint& p : closest) {
@@ -205,45 +238,25 @@ std::pair<double, double> distances(const std::vector<ClosestPoint>& closest) {
   return {sum / double(closest.size()), largest};
 }
 
-}  // namespace
-
-fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
-                                   const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
-  checkOptions(options);
-  checkMesh(Vs, Fs, "source skin");
-  checkMesh(Vt, Ft, "target skin");
-  checkLandmarks(landmarks, Vs.rows());
-  return similarityAlignment(Vs, Fs, Ft, detail::makeTarget(Vt, Ft), landmarks, options);
-}
-
-SkinRegistration registerSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
-                              const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
-  checkOptions(options);
-  checkMesh(Vs, Fs, "source skin");
-  checkMesh(Vt, Ft, "target skin");
-  checkLandmarks(landmarks, Vs.rows());
-  const Target target = detail::makeTarget(Vt, Ft);
-
-  SkinRegistration result;
-  if (options.align) result.alignment = similarityAlignment(Vs, Fs, Ft, target, landmarks, options);
-  const MatrixX3d Q = result.alignment.apply(Vs);  // the rest shape of the shape matching
-  const Rings clusters = buildRings(Vs.rows(), Fs, options.ringsStart);
+MatrixX3d deformOntoTarget(const MatrixX3d& Q, const MatrixX3i& Fs, const Target& target,
+                           const std::vector<SkinLandmark>& landmarks, const SkinRegistrationOptions& options,
+                           std::vector<double>& meanDistance, std::vector<char>& reached) {
+  const Rings clusters = buildRings(Q.rows(), Fs, options.ringsStart);
   MatrixX3d X = Q;
-  std::vector<char> reached;
   for (int it = 0; it < options.iterations; ++it) {
     const double t = options.iterations == 1 ? 1.0 : double(it) / double(options.iterations - 1);
     const double s = options.stiffnessStart + t * (options.stiffnessEnd - options.stiffnessStart);
     const int rings = int(std::lround(options.ringsStart + t * (options.ringsEnd - options.ringsStart)));
     const std::vector<ClosestPoint> forward = target.tree.closest(X);
-    result.meanDistance.push_back(distances(forward).first);
+    meanDistance.push_back(distances(forward).first);
     const MatrixX3d Y = wantedPositions(X, correspondences(X, Fs, forward, target, landmarks, options), reached);
     const MatrixX3d G = shapeMatchingGoals(Q, Y, clusters, rings, options.beta);
     for (Eigen::Index v = 0; v < X.rows(); ++v)
       X.row(v) = reached[v] ? Eigen::RowVector3d(s * G.row(v) + (1 - s) * Y.row(v)) : Eigen::RowVector3d(G.row(v));
   }
-  std::tie(result.finalMeanDistance, result.finalMaxDistance) = distances(target.tree.closest(X));
-  result.V = std::move(X);
-  return result;
+  return X;
 }
+
+}  // namespace detail
 
 }  // namespace vesalius::transfer
