@@ -2,7 +2,6 @@
 // (§4), erosion by the fat thickness (§5) and registration of the lean reference onto the eroded skin,
 // Laplace interpolation (§7), bone registration (§8), final interpolation; with the anatomical rules
 // measured in the report.
-#include "body_distance.h"
 #include "bone_fat_amounts.h"
 #include "common.h"
 #include "landmark_pairs.h"
@@ -10,11 +9,11 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"
-#include "vesalius/fat/erode_skin.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
-#include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/body_distance.h"
+#include "vesalius/patient/transfer_into_body.h"
 #include "vesalius/transfer/anatomy_checks.h"
 #include "vesalius/transfer/anatomy_transfer.h"
 #include "vesalius/transfer/articulated_registration.h"
@@ -77,27 +76,10 @@ transfer::SkinRegistration registerReferenceSkin(const ReferenceAnatomy& referen
       .registration;
 }
 
-// No fat where the scan's field of view cut the body: those vertices are not skin.
-Eigen::VectorXd withoutCut(const ReferenceAnatomy& reference, Eigen::VectorXd thickness) {
-  for (const int v : reference.skinCutVertices) thickness[v] = 0;
-  return thickness;
-}
-
-// The grid of the displacement field: it covers the reference skin and every tissue.
-GridGeometry fieldGrid(const ReferenceAnatomy& reference, double voxelSize) {
-  std::vector<const TriMesh*> meshes{&reference.skin};
-  for (const ReferenceTissue& t : reference.tissues) meshes.push_back(&t.mesh);
-  meshing::CoveringGridOptions grid;
-  grid.voxelSizeMm = voxelSize;
-  grid.marginMm = 3 * voxelSize;
-  grid.maxSize = Eigen::Vector3i(400, 400, 800);
-  return meshing::coveringGrid(meshes, grid);
-}
-
-// The same at every tissue vertex.
+// The signed distance at every tissue vertex.
 std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const std::vector<MatrixX3d>& tissues) {
   std::vector<Eigen::VectorXd> result;
-  for (const MatrixX3d& V : tissues) result.push_back(transfer::sampleSignedDistance(distance, V, kDistanceBandMm));
+  for (const MatrixX3d& V : tissues) result.push_back(transfer::sampleSignedDistance(distance, V, meshing::kDistanceBandMm));
   return result;
 }
 
@@ -122,10 +104,10 @@ long outsideAtCut(const TriMesh& skin, const TriangleTree& tree, const std::vect
 // for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
 // voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
 // field's first-order error at the skin; `deepMm` counts those deeper apart. Both bodies include their
-// cavities (body_distance.h), whose volumes the report gives, and the vertices that lie in them. Of those
+// cavities (meshing/body_distance.h), whose volumes the report gives, and the vertices that lie in them. Of those
 // outside, the ones at a cut are counted apart (outsideAtCut). `registered`: the reference skin registered
 // onto the target, the skin `body` measures.
-void reportInside(const BodyDistance& referenceBody, const BodyDistance& body, const ReferenceAnatomy& reference,
+void reportInside(const meshing::BodyDistance& referenceBody, const meshing::BodyDistance& body, const ReferenceAnatomy& reference,
                   const TriMesh& registered, const transfer::TransferredAnatomy& result, double deepMm,
                   io::Report& report) {
   std::vector<MatrixX3d> rest;
@@ -159,8 +141,8 @@ void reportInside(const BodyDistance& referenceBody, const BodyDistance& body, c
     pushedOut += tissuePushedOut;
     deepPushedOut += tissueDeep;
     if (tissueOutsideBefore) report.metric("reference_outside_vertices_" + reference.tissues[t].name, tissueOutsideBefore);
-    const long referenceInCavities = verticesInCavities(referenceBody, rest[t]),
-               targetInCavities = verticesInCavities(body, result.tissues[t]);
+    const long referenceInCavities = meshing::verticesInCavities(referenceBody, rest[t]),
+               targetInCavities = meshing::verticesInCavities(body, result.tissues[t]);
     inCavitiesBefore += referenceInCavities;
     inCavitiesAfter += targetInCavities;
     if (referenceInCavities) report.metric("reference_in_cavities_vertices_" + reference.tissues[t].name, referenceInCavities);
@@ -234,17 +216,6 @@ void renderPng(const ReferenceAnatomy& anatomy, const std::vector<MatrixX3d>& ti
   viz::writeSurfacesPng(layers, path, options);
 }
 
-ReferenceAnatomy transferredAnatomy(const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result,
-                                    const MatrixX3d& targetSkin) {
-  ReferenceAnatomy out = reference;
-  out.name = "transferred from " + reference.name;
-  out.skin.V = targetSkin;
-  out.sagittal = result.sagittal;
-  for (std::size_t t = 0; t < out.tissues.size(); ++t) out.tissues[t].mesh.V = result.tissues[t];
-  for (std::size_t p = 0; p < out.points.size(); ++p) out.points[p].position = result.points.row(Eigen::Index(p)).transpose();
-  return out;
-}
-
 void runTransfer(const TransferOptions& o) {
   if (fs::weakly_canonical(o.out) == fs::weakly_canonical(o.reference))
     throw UsageError("transfer: --out must not be the reference folder (inputs are never overwritten)");
@@ -291,51 +262,27 @@ void runTransfer(const TransferOptions& o) {
     report.metric("landmark_mean_error_mm", sum / double(landmarks.size()));
   }
 
-  TriMesh eroded = reference.skin;
-  eroded.V = registered.V;
-  if (fat.maxCoeff() > 0) {
-    auto timer = report.time("erosion");
-    const Eigen::VectorXd thickness = withoutCut(reference, fat);
-    const fat::ErodedSkin e = fat::erodeSkin(registered.V, reference.skin.F, thickness);
-    eroded.V = e.V;
-    report.metric("erosion_mean_mm", e.meanDisplacement);
-    report.metric("erosion_limited_vertices", e.limited);
-    report.metric("erosion_new_self_intersections", e.newSelfIntersections);
-  }
-  if (fat.maxCoeff() > 0) {
-    // The reference is lean (§3: "warp our lean source anatomy to the sub-fat part of the target"), so it is
-    // registered again, onto the eroded skin. Erosion takes the fat off along the normals only; the first
-    // registration had scaled the reference to the fatter body (its similarity alignment) and stretched it
-    // along the surface, and that stretch would carry into the bones (rule R3).
-    auto timer = report.time("sub-fat registration");
-    const transfer::SkinRegistration subFat = registerReferenceSkin(reference, parts, eroded.V, reference.skin.F, o);
-    report.metric("sub_fat_registration_mean_distance_mm", subFat.finalMeanDistance);
-    report.metric("sub_fat_registration_scale", subFat.alignment.scale);
-    eroded.V = subFat.V;
-  }
   report.metric("registration_scale", registered.alignment.scale);
 
-  progress.begin("transfer", "interpolation, bone registration, final interpolation");
-  start = std::chrono::steady_clock::now();
-  const GridGeometry grid = fieldGrid(reference, o.voxelSize);
-  const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, grid);
-  endStage("inside mask");
-  // Rule R6 in the bone registration: bones are kept inside the eroded skin (without fat, the report's
-  // target skin), and as deep as they were in the reference's.
-  const BodyDistance erodedBody = bodySignedDistance(eroded);
-  endStage("eroded skin distance");
-  const BodyDistance referenceBody = bodySignedDistance(reference.skin);
-  endStage("reference skin distance");
-  transfer::AnatomyTransferOptions transferOptions;
-  transferOptions.targetSkinDistance = &erodedBody.signedDistance;
-  transferOptions.referenceSkinDistance = &referenceBody.signedDistance;
-  transferOptions.field.laplace.solver =
+  patient::TransferIntoBodyOptions pipeline;
+  pipeline.registration.registration.iterations = o.registrationIterations;
+  pipeline.articulated = o.registration != "plain";
+  pipeline.voxelSizeMm = o.voxelSize;
+  pipeline.transfer.field.laplace.solver =
       o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
-  const transfer::TransferredAnatomy result = transfer::transferAnatomy(reference, eroded.V, inside, transferOptions);
-  progress.end();
-  report.stage("skin field", result.secondsSkinField);
-  report.stage("bone registration", result.secondsBones);
-  report.stage("final field", result.secondsFinalField);
+  const patient::TransferIntoBody into = patient::transferIntoBody(reference, registered.V, fat, parts, pipeline, &progress);
+  for (const auto& [stage, seconds] : into.stageSeconds) report.stage(stage, seconds);
+  if (into.eroded) {
+    report.metric("erosion_mean_mm", into.erosionMeanMm);
+    report.metric("erosion_limited_vertices", into.erosionLimited);
+    report.metric("erosion_new_self_intersections", into.erosionNewSelfIntersections);
+    report.metric("sub_fat_registration_mean_distance_mm", into.subFatMeanDistanceMm);
+    report.metric("sub_fat_registration_scale", into.subFatScale);
+  }
+  const transfer::TransferredAnatomy& result = into.transferred;
+  const GridGeometry& grid = into.grid;
+  TriMesh eroded = reference.skin;
+  eroded.V = into.erodedSkin;
   start = std::chrono::steady_clock::now();
   report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
   const auto iterations = [](const transfer::DisplacementField& f) {
@@ -354,12 +301,12 @@ void runTransfer(const TransferOptions& o) {
   report.metric("unfold_released_cells", result.finalField.releasedCells);
   TriMesh body = reference.skin;
   body.V = registered.V;
-  reportInside(referenceBody, fat.maxCoeff() > 0 ? bodySignedDistance(body) : erodedBody, reference, body, result,
-               o.voxelSize, report);
+  reportInside(into.referenceBody, into.eroded ? meshing::bodySignedDistance(body) : into.erodedBody, reference, body,
+               result, o.voxelSize, report);
   reportBones(reference, result, report);
   endStage("checks");
 
-  const ReferenceAnatomy out = transferredAnatomy(reference, result, registered.V);
+  const ReferenceAnatomy& out = into.anatomy;
   // The sub-fat surface (the seed's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
   io::writeReferenceAnatomy(o.out, out, o.common.writeOptions(), {{"eroded_skin.obj", eroded}});
   report.output("anatomy", o.out);

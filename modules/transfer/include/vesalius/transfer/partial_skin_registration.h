@@ -74,11 +74,13 @@ struct AlignmentBones {
 struct PartialSkinRegistration {
   MatrixX3d V;                          // #Vs by 3: the completed skin (source topology), mm
   std::vector<char> pulled;             // #Vs: 1 where the target's skin pulled the vertex (step 3)
-  Eigen::Matrix3d alignmentLinear = Eigen::Matrix3d::Identity();  // step 1: x -> alignmentLinear x + alignmentTranslation
+  // Step 1's transform of the source: x -> alignmentLinear x + alignmentTranslation.
+  Eigen::Matrix3d alignmentLinear = Eigen::Matrix3d::Identity();
   Eigen::Vector3d alignmentTranslation = Eigen::Vector3d::Zero();
   double girthScale = 1;                // step 1's similarity scale: the trunk's girth against the source's
   fit::SimilarityTransform continuation;  // step 3's S, rigid (maps the aligned source)
-  double alignmentMeanDistance = 0;     // mean distance of the target's skin vertices to the aligned source, mm
+  double alignmentMeanDistance = 0;     // mean distance of the target's skin vertices to the source under
+                                        // step 1's similarity, mm
   double skinMeanDistance = 0;          // mean and largest distance of the target's skin vertices (not cut)
   double skinMaxDistance = 0;           // to the completed skin, mm
 };

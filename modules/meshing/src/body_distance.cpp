@@ -1,12 +1,12 @@
 // The signed distance grid of rules R5 and R6 (body_distance.h).
-#include "body_distance.h"
+#include "vesalius/meshing/body_distance.h"
 
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/sealed_cavities.h"
 
 #include <cmath>
 
-namespace vesalius::cli {
+namespace vesalius::meshing {
 
 BodyDistance bodySignedDistance(const TriMesh& body) {
   static_assert(kCavityOpeningMm <= 2 * kDistanceBandMm, "the closing reads distances up to half the opening");
@@ -38,4 +38,4 @@ long verticesInCavities(const BodyDistance& body, const MatrixX3d& V) {
   return count;
 }
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::meshing

@@ -1,6 +1,7 @@
 // The signed distance to a closed body surface on which rules R5 and R6 (seed 000 §3: tissue inside the
-// skin) are measured, shared by `transfer` (its report and its bone maps) and `reference full-body` (its
-// bones moved inside the skin), so that both count "inside" alike.
+// skin) are measured, shared by the transfer pipeline (patient/transfer_into_body.h: its bone maps and
+// `vesalius transfer`'s report) and `reference full-body` (its bones moved inside the skin), so that all
+// count "inside" alike.
 //
 // The body is the skin with its cavities (meshing/sealed_cavities.h): MakeHuman's mouth and eye sockets
 // are pockets of the skin surface reaching into the head, in which the reference's teeth, palate and
@@ -14,7 +15,7 @@
 
 #include <cstdint>
 
-namespace vesalius::cli {
+namespace vesalius::meshing {
 
 // Exact within this distance of the surface, clamped to ±it beyond (mm).
 constexpr double kDistanceBandMm = 6.0;
@@ -34,4 +35,4 @@ BodyDistance bodySignedDistance(const TriMesh& body);
 // How many rows of V (#V by 3, mm) lie in the body's cavities (their nearest voxel).
 long verticesInCavities(const BodyDistance& body, const MatrixX3d& V);
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::meshing
