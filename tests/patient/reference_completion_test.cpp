@@ -69,7 +69,6 @@ TEST_P(ReferenceCompletionOfCt, SkinWithinAVoxelAndBonesInside) {
   patient::ReferenceCompletionOptions options;
   options.registration.registration.iterations = 20;
   options.transfer.registration.registration.iterations = 20;
-  options.transfer.voxelSizeMm = 4;
   const auto start = std::chrono::steady_clock::now();
   const patient::ReferenceCompletion c =
       patient::completeWithReference(patient.anatomy, patient.fatThickness, reference, options);

@@ -33,7 +33,16 @@ namespace vesalius::patient {
 struct ReferenceCompletionOptions {
   transfer::PartialSkinRegistrationOptions registration;  // step 1
   bool alignBones = true;  // step 1's alignment also pulls the reference's bones onto the patient's bone tissues
-  TransferIntoBodyOptions transfer;                        // step 3
+  // Step 3, with a 4 mm field: on the shipped CT a 3 mm field took 102 s and 7.2 GB for the same skin
+  // (0.71 against 0.73 mm mean) and bones (none outside), 4 mm 56 s and 3.5 GB, as the full body with its
+  // arms spread makes a large grid.
+  TransferIntoBodyOptions transfer = withFieldVoxel(4.0);
+
+  static TransferIntoBodyOptions withFieldVoxel(double mm) {
+    TransferIntoBodyOptions o;
+    o.voxelSizeMm = mm;
+    return o;
+  }
 };
 
 struct ReferenceCompletion {
