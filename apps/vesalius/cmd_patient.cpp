@@ -2,6 +2,7 @@
 // (patient/virtual_patient.h). Reads the inputs and the organ template library, runs the pipeline, writes
 // the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
 #include "common.h"
+#include "full_body_sources.h"
 #include "posing_session.h"
 
 #include "vesalius/core/error.h"
@@ -33,6 +34,8 @@ struct PatientOptions {
   std::string scan, organs, organTable, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
   std::string pose, motion;  // joint angles, or a BVH motion and its frame
   int frame = 0;
+  std::string reference;     // a full-body reference folder; empty: built from the shipped sources
+  bool complete = true;      // complete the full-body reference into the patient
   bool png = false;
   patient::VirtualPatientOptions pipeline;
   patient::PatientPoseOptions posing;
@@ -85,6 +88,16 @@ void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
   viz::writeSurfacesPng(layers, path, {});
 }
 
+// The completed body inside its translucent skin, the scan's own skin over it: where the patient ends and
+// the reference goes on.
+void renderCompletionPng(const patient::ReferenceCompletion& c, const ReferenceAnatomy& scan, const std::string& path) {
+  std::vector<viz::SurfaceLayer> layers;
+  for (const ReferenceTissue& t : c.anatomy.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
+  layers.push_back({&c.anatomy.skin, kSkinColour, 0.15});
+  layers.push_back({&scan.skin, viz::Rgb{{90, 160, 230}}, 0.35});
+  viz::writeSurfacesPng(layers, path, {});
+}
+
 // The anatomy with the posed vertices of the rig's meshes (skin first, then the tissues in order).
 ReferenceAnatomy posedAnatomy(const ReferenceAnatomy& rest, const patient::PosedPatient& posed) {
   ReferenceAnatomy anatomy = rest;
@@ -127,6 +140,33 @@ void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const
   report.metric("pose", pose);
 }
 
+// The full-body reference to complete into the patient: --reference's folder, or built from the shipped
+// MakeHuman body and OpenSim model as `vesalius reference full-body` builds it by default.
+ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
+  if (!o.reference.empty()) return io::readReferenceAnatomy(o.reference);
+  const std::string skeleton = VESALIUS_DATA_DIR "/body/default.mhskel";
+  const patient::FullBodySources sources =
+      readFullBodySources(VESALIUS_DATA_DIR "/body/shapes/mh_neutral_body.obj", skeleton, "",
+                          VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim");
+  return patient::buildFullBodyReference(sources, skeleton).anatomy;
+}
+
+// DIR/completed/: the full-body reference completed into the patient (a reference folder), its skin with
+// the fat and the vertices the scan's skin pulled.
+void writeCompletion(const patient::ReferenceCompletion& c, const std::string& dir, io::Report& report) {
+  io::writeReferenceAnatomy(dir + "/completed", c.anatomy, {});
+  TriMesh skin = c.anatomy.skin;
+  skin.vertexAttributes.real["fat_thickness"] = c.fatThickness;
+  Eigen::VectorXi pulled(skin.V.rows());
+  for (Eigen::Index v = 0; v < pulled.size(); ++v) pulled[v] = c.pulled[std::size_t(v)];
+  skin.vertexAttributes.integer["pulled_by_scan"] = pulled;
+  io::writeTriMesh(dir + "/completed_skin.vtp", skin);
+  report.metric("completion", {{"tissues", c.anatomy.tissues.size()},
+                               {"skin_vertices_pulled_by_scan", pulled.sum()},
+                               {"scan_skin_to_completed_mean_mm", c.registration.skinMeanDistance},
+                               {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance}});
+}
+
 // The pose asked for (posed world transforms of the rig's joints), or none.
 struct Pose {
   std::vector<Eigen::Isometry3d> world;
@@ -147,6 +187,7 @@ void writeOutputs(const PatientOptions& o, const Image& scan, const patient::Vir
   nlohmann::json labelTissues = nlohmann::json::object(), fits = nlohmann::json::object();
   for (const auto& [label, tissues] : p.labelTissues)
     for (const std::string& t : tissues) labelTissues[label].push_back("anatomy/" + io::tissueFile(t));
+  if (p.completion) writeCompletion(*p.completion, dir, report);
   if (p.rig) {
     io::writeAnatomyRig(dir + "/rig", p.rig->rig, p.rig->meshes, {});
     report.metric("hip_joints", {{"left", p.rig->hipLeft}, {"right", p.rig->hipRight}});
@@ -171,6 +212,7 @@ void writeOutputs(const PatientOptions& o, const Image& scan, const patient::Vir
   report.metric("fat_thickness_mm", {{"mean", p.fatThickness.mean()}, {"max", p.fatThickness.maxCoeff()}});
   for (const auto& [stage, seconds] : p.stageSeconds) report.stage(stage, seconds);
   if (o.png) renderPng(p.anatomy, dir + "/patient.png");
+  if (o.png && p.completion) renderCompletionPng(*p.completion, p.anatomy, dir + "/completed.png");
   if (pose) writePosed(o, p, pose->posed, pose->world, dir + "/posed", report);
   report.write(dir + "/report.json", {});
 }
@@ -208,8 +250,16 @@ void runPatient(const PatientOptions& o) {
       throw UsageError("patient: --frame " + std::to_string(o.frame) + " outside 0.." +
                        std::to_string(motion->frameCount() - 1) + " of " + o.motion);
   }
+  std::optional<ReferenceAnatomy> reference;
+  patient::VirtualPatientOptions pipeline = o.pipeline;
+  if (o.complete) {
+    progress.begin("reference", "the full-body reference");
+    reference = fullBodyReference(o);
+    progress.end();
+    pipeline.fullBodyReference = &*reference;
+  }
   const patient::VirtualPatient p = patient::buildVirtualPatient(scan, organs ? &*organs : nullptr, templates,
-                                                                 o.pipeline, o.scan, o.organs, &progress);
+                                                                 pipeline, o.scan, o.organs, &progress);
   std::optional<Pose> pose;
   if (!o.pose.empty() || motion) {
     if (!p.rig) throw BadInput(o.organs.empty() ? o.scan : o.organs, "cannot pose the patient: " + p.noRigBecause);
@@ -237,6 +287,10 @@ void runPatient(const PatientOptions& o) {
     std::cout << "  " << f.organ << ": " << f.templateSource << " fitted to " << f.fit.markers.rows()
               << " markers on its label, error " << f.fit.errorBefore.mean() << " -> " << f.fit.errorAfter.mean()
               << " mm (mean)\n";
+  if (p.completion)
+    std::cout << "  completed/: the full-body reference completed into the patient (" << p.completion->anatomy.tissues.size()
+              << " tissues; the scan's skin " << p.completion->registration.skinMeanDistance
+              << " mm from the completed skin on average)\n";
   if (p.rig)
     std::cout << "  rig/: " << p.rig->rig.tets.T.rows() << " tets, joints " << p.rig->hipLeft << " and "
               << p.rig->hipRight << " turn the hips (vesalius pose --anatomy " << o.out << "/rig)\n";
@@ -263,6 +317,10 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
   cmd.add_option("--refits", o.pipeline.organFit.refits, "Refits of each organ fit from the shape it reached")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
+  cmd.add_option("--reference", o.reference,
+                 "Full-body reference folder to complete into the patient beyond the scan (`vesalius reference "
+                 "full-body`); default: built from the shipped MakeHuman body and OpenSim model");
+  cmd.add_flag("!--no-reference", o.complete, "Do not complete the full-body reference into the patient");
   cmd.add_option("--pose", o.pose,
                  "Also pose the patient by joint angles in degrees, e.g. 'femur_left=-30,0,0; femur_right=-30,0,0' "
                  "(both hips flexed 30 degrees); the joints are pelvis, femur_left, femur_right, vertebrae_L5 upward");
@@ -277,14 +335,17 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
                  "Voxels of the body and bones the rig is meshed from, mm (the scan's own if coarser)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd.add_flag("--png", o.png, "Also write patient.png: the anatomy inside the translucent skin (needs a display)");
+  cmd.add_flag("--png", o.png,
+               "Also write patient.png (the anatomy inside the translucent skin) and completed.png (the completed body, "
+               "the scan's skin in blue); needs a display");
   addCommonOptions(cmd, o.common);
 }
 
 const char* kOutputs =
     "Writes DIR/anatomy/ (skin and every tissue, the format `vesalius transfer` reads), patient.glb (the same for "
     "any glTF viewer), skin_fat.vtp (fat thickness per skin vertex), tissue_classes.nii.gz and .png, rig/ (what "
-    "`vesalius pose` and vesalius-poser pose), organs/ (markers and fitted templates), with --pose or --motion "
+    "`vesalius pose` and vesalius-poser pose), organs/ (markers and fitted templates), completed/ and "
+    "completed_skin.vtp (the full-body reference completed into the patient beyond the scan), with --pose or --motion "
     "posed/ (the posed model, scan and organ map) and report.json (label_tissues, hip_joints, organ fits, pose "
     "quality, stage times). "
     "docs/virtual-patient.md says what the model holds.";

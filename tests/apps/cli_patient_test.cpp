@@ -119,6 +119,13 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   for (const char* file : {"posed/anatomy/reference.json", "posed/patient.glb", "posed/tets.vtu", "posed/skeleton.bvh",
                            "posed/scan.nii.gz", "posed/organs.nii.gz", "rig/rig.vtu", "rig/meshes/skin.obj"})
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
+  // Beyond the field of view, the full-body reference completed into the patient: the scan's skin within a
+  // voxel of the completed skin, on average.
+  const nlohmann::json& completion = m["completion"];
+  std::cout << "completion: " << completion.dump() << '\n';
+  EXPECT_LT(completion["scan_skin_to_completed_mean_mm"].get<double>(), voxel);
+  EXPECT_GT(io::readReferenceAnatomy(out + "/completed").tissues.size(), 50u);
+  EXPECT_TRUE(fs::exists(out + "/completed_skin.vtp"));
   const std::string posedAgain = fresh("demo_pose");
   const CommandResult again = runVesalius({"pose", "--anatomy", out + "/rig", "--angles", "femur_left=-30,0,0",
                                            "--method", "cor", "--out", posedAgain, "--progress", "none"});
@@ -127,12 +134,12 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
 }
 
 // Frame 400 of the shipped CMU motion (subject 1, trial 1) retargeted onto the patient's rig: hips and
-// lower back driven. No organ templates, so the run is the rig and the pose.
+// lower back driven. No organ templates and no completion, so the run is the rig and the pose.
 TEST(CliPatient, PosedByAFrameOfAMotion) {
   const std::string out = fresh("motion"), noTemplates = fresh("no_templates");
   fs::create_directories(noTemplates);
   const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--organs", kCtLabels, "--organ-table",
-                                       kCtLabelTable, "--templates", noTemplates, "--motion",
+                                       kCtLabelTable, "--templates", noTemplates, "--no-reference", "--motion",
                                        std::string(VESALIUS_TESTDATA) + "/motion/01_01.bvh", "--frame", "400",
                                        "--out", out, "--progress", "none"});
   ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -138,6 +138,12 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
   }
   patient.anatomy.validate(scanSource);
 
+  if (options.fullBodyReference) {
+    patient.completion = completeWithReference(patient.anatomy, patient.fatThickness, *options.fullBodyReference,
+                                               options.completion, progress);
+    clock.end("reference completion");
+  }
+
   if (!options.rig) {
     patient.noRigBecause = "not asked for";
   } else if (!organs) {

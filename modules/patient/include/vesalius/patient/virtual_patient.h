@@ -9,11 +9,13 @@
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
 //     template fitted by plastic strains to markers on its label (seed 002; organ_fit.h). Without one, the
 //     scan's own bone class as one bone tissue.
-//  4. the rig: with an organ map holding the pelvis (hips, sacrum) and the femurs, the rig of the patient's
+//  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
+//     partial skin and transferred into it (reference_completion.h; seed 000): a whole body around the scan.
+//  5. the rig: with an organ map holding the pelvis (hips, sacrum) and the femurs, the rig of the patient's
 //     body and bones that carries the model (patient_rig.h; seed 001); posePatient then poses it.
-// Not yet (docs/virtual-patient.md): the reference completed outside the field of view and transferred
-// into the patient (seed 000), reference bones registered onto their labels, organs pushed apart where
-// they touch (seed 002 §4.1.4).
+// Not yet (docs/virtual-patient.md): the model and the completed body merged into one (inside the field of
+// view the completed body's bones registered onto the patient's labels, seed 000 §8), organs pushed apart
+// where they touch (seed 002 §4.1.4).
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -22,6 +24,7 @@
 #include "vesalius/core/progress.h"
 #include "vesalius/patient/organ_fit.h"
 #include "vesalius/patient/patient_rig.h"
+#include "vesalius/patient/reference_completion.h"
 #include "vesalius/patient/scan_anatomy.h"
 
 #include <Eigen/Core>
@@ -46,6 +49,10 @@ struct VirtualPatientOptions {
   OrganFitOptions organFit;
   bool rig = true;  // rig the model when the organ map has its bones
   PatientRigOptions rigging;
+  // The full-body reference (full_body_reference.h) to complete into the patient beyond the field of view;
+  // none: no completion. The caller's, not copied.
+  const ReferenceAnatomy* fullBodyReference = nullptr;
+  ReferenceCompletionOptions completion;
 };
 
 struct FittedOrgan {
@@ -61,6 +68,7 @@ struct VirtualPatient {
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<FittedOrgan> fits;
+  std::optional<ReferenceCompletion> completion;  // with options.fullBodyReference
   std::optional<PatientRig> rig;  // none without an organ map holding the pelvis and femurs
   std::string noRigBecause;       // why there is no rig, in the user's words
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
