@@ -22,13 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return nlohmann::json::parse(s.str());
-}
-
 void runOrExit(const std::vector<std::string>& args, const std::string& log) {
   if (bench::runProgram(VESALIUS_EXE, args, log).exitCode != 0) {
     std::fprintf(stderr, "bench_fit_dense: vesalius %s failed; see %s\n", args[0].c_str(), log.c_str());
@@ -47,7 +40,7 @@ void fitRow(const std::string& name, long triangles, const std::string& templ, c
     std::fprintf(stderr, "bench_fit_dense: the fit of %s failed; see %s.log\n", name.c_str(), out.c_str());
     std::exit(1);
   }
-  const nlohmann::json m = readJson(out + ".json")["metrics"];
+  const nlohmann::json m = bench::readJson(out + ".json")["metrics"];
   std::printf("| %s | %ld | %ld | %ld | %.2f → %.2f mm | %.1f s | %.1f s | %.0f MB |\n", name.c_str(), triangles,
               m["tetrahedralized_faces"].get<long>(), m["mesh"]["fitted_tets"].get<long>(),
               m["icp_error_mm"]["before"]["mean"].get<double>(), m["icp_error_mm"]["after"]["mean"].get<double>(),

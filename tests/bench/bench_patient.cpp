@@ -21,13 +21,6 @@ using namespace vesalius;
 
 namespace {
 
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return nlohmann::json::parse(s.str());
-}
-
 // The stages of report.json, slowest first, as "name s, ...".
 std::string slowestStages(const nlohmann::json& report, int count) {
   std::vector<std::pair<double, std::string>> stages;
@@ -51,7 +44,7 @@ double run(const std::string& name, std::vector<std::string> args, const std::st
     std::fprintf(stderr, "bench_patient: %s failed; see %s.log\n", name.c_str(), out.c_str());
     std::exit(1);
   }
-  const nlohmann::json report = readJson(out + "/report.json");
+  const nlohmann::json report = bench::readJson(out + "/report.json");
   std::printf("| %s | %.1f s | %.1f s | %.0f MB | %s | %s |\n", name.c_str(), r.wall, r.cpu, r.peakMb,
               baseline > 0 ? (std::to_string(r.wall / baseline).substr(0, 4) + "x").c_str() : "1x",
               slowestStages(report, 3).c_str());

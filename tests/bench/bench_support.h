@@ -1,19 +1,31 @@
 // What the benchmark drivers share: wall time of a piece of work, running a workload in a child process
-// so that its peak resident memory is its own, and timing a program run as a user would run it.
+// so that its peak resident memory is its own, timing a program run as a user would run it, and reading
+// the JSON report it writes.
 #pragma once
 
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace vesalius::bench {
+
+inline nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return nlohmann::json::parse(s.str());
+}
 
 inline double seconds(const std::function<void()>& work) {
   const auto start = std::chrono::steady_clock::now();
