@@ -20,6 +20,7 @@
 #include "vesalius/viz/slice_overlay.h"
 #include "vesalius/viz/surface_render.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -140,6 +141,20 @@ void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const
   report.metric("pose", pose);
 }
 
+// --pose's syntax and joint names, before the work: the rig's joints are the pelvis, the femurs and the
+// lumbar vertebrae of the organ map (posing/skeleton_from_bones.h).
+void checkPoseJoints(const PatientOptions& o) {
+  const posing::SkeletonFromBonesOptions& bones = o.pipeline.rigging.bones;
+  std::vector<std::string> joints{"pelvis", bones.femurLeft, bones.femurRight};
+  joints.insert(joints.end(), bones.spine.begin(), bones.spine.end());
+  for (const posing::JointAngle& a : posing::parseJointAngles(o.pose))
+    if (std::find(joints.begin(), joints.end(), a.joint) == joints.end()) {
+      std::string list;
+      for (const std::string& j : joints) list += (list.empty() ? "" : ", ") + j;
+      throw UsageError("patient: --pose: no joint '" + a.joint + "' in the patient's rig (" + list + ")");
+    }
+}
+
 // The full-body reference to complete into the patient: --reference's folder, or built from the shipped
 // MakeHuman body and OpenSim model as `vesalius reference full-body` builds it by default.
 ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
@@ -225,7 +240,7 @@ void runPatient(const PatientOptions& o) {
   if (o.png && !viz::canRenderSurfaces()) throw UsageError("patient: --png needs a display (run under xvfb-run)");
   if (!o.pose.empty() && !o.motion.empty()) throw UsageError("patient: give --pose or --motion, not both");
   if (!posing::isSkinningMethod(o.posing.method)) throw UsageError("patient: --method must be lbs, dqs, cor or fem");
-  if (!o.pose.empty()) posing::parseJointAngles(o.pose);  // its syntax, before the work
+  if (!o.pose.empty()) checkPoseJoints(o);
   for (const std::string& input : {o.scan, o.organs})
     if (!input.empty() && fs::exists(input) && fs::exists(o.out) &&
         fs::weakly_canonical(input).string().rfind(fs::weakly_canonical(o.out).string() + "/", 0) == 0)

@@ -53,11 +53,17 @@ Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
   return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
 }
 
-// Writes the rig with `meshes` (and every --tissue) and reports what was built.
+// `meshes` and every --tissue, in the rig's space (a MakeHuman tissue converted as its skin is).
+std::vector<std::pair<std::string, TriMesh>> withTissues(const RigOptions& o, std::vector<std::pair<std::string, TriMesh>> meshes,
+                                                         bool makeHuman = false) {
+  for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), toLps(io::readTriMesh(t), makeHuman));
+  return meshes;
+}
+
+// Writes the rig with `meshes` and reports what was built.
 void finishRig(const RigOptions& o, rigging::BuiltRig& built, std::vector<std::pair<std::string, TriMesh>> meshes,
                io::Report& report) {
   for (const auto& [stage, seconds] : built.stageSeconds) report.stage(stage, seconds);
-  for (const std::string& t : o.tissues) meshes.emplace_back(fs::path(t).filename().string(), io::readTriMesh(t));
   const AnatomyRig& rig = built.rig;
   io::writeAnatomyRig(o.out, rig, meshes, o.common.writeOptions());
   report.output("anatomy", o.out);
@@ -96,7 +102,7 @@ void runSkinRig(const RigOptions& o) {
   Progress progress(o.common.progressStyle());
   const TriMesh skin = toLps(io::readTriMesh(o.skin), makeHuman);
   rigging::BuiltRig built = rigging::rigFromSkeleton(skin, readSkeleton(o, makeHuman), o.rig, o.skin, &progress);
-  finishRig(o, built, {{"skin" + fileExtension(o.skin), skin}}, report);
+  finishRig(o, built, withTissues(o, {{"skin" + fileExtension(o.skin), skin}}, makeHuman), report);
 }
 
 void runLabelRig(const RigOptions& o) {
@@ -109,7 +115,7 @@ void runLabelRig(const RigOptions& o) {
   posing::SkeletonFromBonesOptions bones = o.bones;
   if (!std::isnan(o.acetabulumDistance)) bones.acetabulumDistance = o.acetabulumDistance;
   rigging::BuiltRig built = rigging::rigFromBoneLabels(map, bones, o.rig, o.labels, &progress);
-  finishRig(o, built, std::move(built.regionSurfaces), report);
+  finishRig(o, built, withTissues(o, std::move(built.regionSurfaces)), report);
 }
 
 void runReferenceRig(const RigOptions& o) {
@@ -123,7 +129,7 @@ void runReferenceRig(const RigOptions& o) {
   rigging::BuiltRig built = rigging::rigFromReference(reference, bones, o.rig, o.reference, &progress);
   std::vector<std::pair<std::string, TriMesh>> meshes{{"skin.obj", reference.skin}};
   for (const ReferenceTissue& t : reference.tissues) meshes.emplace_back(t.name + ".obj", t.mesh);
-  finishRig(o, built, std::move(meshes), report);
+  finishRig(o, built, withTissues(o, std::move(meshes)), report);
 }
 
 void runRig(const RigOptions& o) {

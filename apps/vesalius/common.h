@@ -24,7 +24,8 @@ struct CommonOptions {
   void finish(const io::Report& report) const;
 };
 
-// Adds --progress, --force and --report to a subcommand.
+// Adds --progress, --force and --report to a subcommand; an existing --report without --force is refused
+// when the options are parsed.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
 
 // A label chosen with --label: an id, or a name from the label table of the map read from `labelsPath`

@@ -213,9 +213,11 @@ TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
                  "--organ-table", dir + "labels_total_v2.tsv", "--pose", "femur_left=-30,0,0", "--out", out,
                  "--progress", "none"},
                 3, dir + "example_seg.nii.gz", out);
-  // A pose that is not joint angles, before any work.
+  // A pose that is not joint angles, or of a joint the rig does not have, before any work.
   expectRefused({"patient", "--scan", kCtScan, "--pose", "femur_left=-30", "--out", out, "--progress", "none"}, 2,
                 "femur_left", out);
+  expectRefused({"patient", "--scan", kCtScan, "--pose", "upperleg01.L=-30,0,0", "--out", out, "--progress", "none"},
+                2, "upperleg01.L", out);
   // An output folder that exists is kept without --force.
   fs::create_directories(out);
   std::ofstream(out + "/keep.txt") << "mine";

@@ -136,6 +136,18 @@ TEST(Cli, BadScanLeavesNoOutput) {
   EXPECT_FALSE(fs::exists(outputDir() + "/truncated-labels.tsv"));
 }
 
+TEST(Cli, AnExistingReportIsRefusedBeforeTheWork) {
+  const std::string out = outputDir() + "/report-refused-labels.nii.gz", report = outputDir() + "/existing-report.json";
+  fs::remove(out);
+  std::ofstream(report) << "{}";
+  const CommandResult r = runVesalius({"segment", "--scan", kData + "/ct-abdomen-pelvis/example_ct_sm.nii.gz",
+                                       "--modality", "ct", "--out", out, "--report", report});
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(report), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, BadMarkersLeaveNoOutput) {
   const std::string out = outputDir() + "/no-schema.fcsv";
   fs::remove(out);

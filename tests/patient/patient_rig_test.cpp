@@ -82,7 +82,8 @@ void checkPoses(const Image& ct, const LabelMap& organs, const std::string& name
       const MatrixX3d restV = mesh.V;
       mesh.V = posed.meshes[std::size_t(m)];
       const Label id = organs.table.resolve(femur);
-      const double dice = segmentation::diceCoefficient(meshing::meshInsideMask(mesh, ct.geometry),
+      // The re-posed map's grid: the scan's, grown to hold the posed body.
+      const double dice = segmentation::diceCoefficient(meshing::meshInsideMask(mesh, posed.organs->labels.geometry),
                                                         segmentation::maskOf(posed.organs->labels, id));
       // The bone's rest-to-posed transform: its joint's posed world times its rest world inverse.
       const int j = rig.rig.skeleton.find(femur);

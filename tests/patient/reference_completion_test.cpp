@@ -17,6 +17,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -31,11 +33,12 @@ namespace {
 const std::string kData = VESALIUS_TESTDATA;
 constexpr double kVoxelMm = 3.0;  // the shipped CT's voxel
 
-// The full-body reference, built once by the command that makes it.
+// The full-body reference, built once per test process by the command that makes it; in a folder of the
+// process's own, as ctest runs the scans' tests at the same time.
 const ReferenceAnatomy& fullBodyReference() {
   static const ReferenceAnatomy reference = [] {
     namespace fs = std::filesystem;
-    const fs::path out = fs::path(VESALIUS_TEST_OUTPUT) / "full-body";
+    const fs::path out = fs::path(VESALIUS_TEST_OUTPUT) / ("full-body-" + std::to_string(getpid()));
     fs::remove_all(out);
     fs::create_directories(out.parent_path());
     const std::string command = std::string(VESALIUS_EXE) + " reference full-body --skin " + kData +
