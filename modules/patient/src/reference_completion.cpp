@@ -1,10 +1,10 @@
 #include "vesalius/patient/reference_completion.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/stage_clock.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/transfer/surface_harmonic_extension.h"
 
-#include <chrono>
 
 namespace vesalius::patient {
 namespace {
@@ -34,12 +34,7 @@ ReferenceCompletion completeWithReference(const ReferenceAnatomy& patientInFov, 
   if (fatThickness.size() != skin.V.rows())
     throw BadInput("", "reference completion: the fat needs one value per patient skin vertex");
   ReferenceCompletion c;
-  auto start = std::chrono::steady_clock::now();
-  const auto endStage = [&](const std::string& name) {
-    const auto now = std::chrono::steady_clock::now();
-    c.stageSeconds.emplace_back(name, std::chrono::duration<double>(now - start).count());
-    start = now;
-  };
+  StageClock clock(c.stageSeconds);
   if (progress) progress->begin("complete", "the full-body reference registered to the skin the scan sees");
   transfer::AlignmentBones bones;
   const bool withBones = options.alignBones && alignmentBones(patientInFov, fullBodyReference, bones);
@@ -48,7 +43,7 @@ ReferenceCompletion completeWithReference(const ReferenceAnatomy& patientInFov, 
                                                          withBones ? &bones : nullptr);
   c.pulled = c.registration.pulled;
   if (progress) progress->end();
-  endStage("partial skin registration");
+  clock.end("partial skin registration");
 
   // Step 2: the patient's fat where the scan pulled the skin, continued beyond.
   const MatrixX3d& completed = c.registration.V;
@@ -60,7 +55,7 @@ ReferenceCompletion completeWithReference(const ReferenceAnatomy& patientInFov, 
     for (int k = 0; k < 3; ++k) fat(v, 0) += p.barycentric[k] * fatThickness[skin.F(p.face, k)];
   }
   c.fatThickness = transfer::extendHarmonically(fat, c.pulled, fullBodyReference.skin.F).col(0);
-  endStage("fat");
+  clock.end("fat");
 
   c.transfer = transferIntoBody(fullBodyReference, completed, c.fatThickness,
                                 transfer::skinPartsFromBones(fullBodyReference), options.transfer, progress);

@@ -1,11 +1,11 @@
 #include "vesalius/patient/transfer_into_body.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/stage_clock.h"
 #include "vesalius/fat/erode_skin.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/transfer/skin_registration.h"
 
-#include <chrono>
 
 namespace vesalius::patient {
 namespace {
@@ -55,12 +55,7 @@ TransferIntoBody transferIntoBody(const ReferenceAnatomy& reference, const Matri
   if (!registeredSkin.allFinite() || !fatThickness.allFinite())
     throw BadInput("", "transfer: the registered skin or the fat is not finite");
   TransferIntoBody r;
-  auto start = std::chrono::steady_clock::now();
-  const auto endStage = [&](const std::string& name) {
-    const auto now = std::chrono::steady_clock::now();
-    r.stageSeconds.emplace_back(name, std::chrono::duration<double>(now - start).count());
-    start = now;
-  };
+  StageClock clock(r.stageSeconds);
   r.erodedSkin = registeredSkin;
   r.eroded = fatThickness.size() > 0 && fatThickness.maxCoeff() > 0;
   if (r.eroded) {
@@ -69,27 +64,26 @@ TransferIntoBody transferIntoBody(const ReferenceAnatomy& reference, const Matri
     r.erosionMeanMm = e.meanDisplacement;
     r.erosionLimited = long(e.limited);
     r.erosionNewSelfIntersections = long(e.newSelfIntersections);
-    endStage("erosion");
+    clock.end("erosion");
     const transfer::SkinRegistration subFat = registerOnto(reference, parts, r.erodedSkin, reference.skin.F, options);
     r.subFatMeanDistanceMm = subFat.finalMeanDistance;
     r.subFatScale = subFat.alignment.scale;
     r.erodedSkin = subFat.V;
-    endStage("sub-fat registration");
+    clock.end("sub-fat registration");
   }
 
   if (progress) progress->begin("transfer", "interpolation, bone registration, final interpolation");
-  start = std::chrono::steady_clock::now();
   r.grid = fieldGrid(reference, options.voxelSizeMm);
   const Grid<std::uint8_t> inside = meshing::meshInsideMask(reference.skin, r.grid);
-  endStage("inside mask");
+  clock.end("inside mask");
   // Rule R6 in the bone registration: bones are kept inside the eroded skin, and as deep as they were in
   // the reference's.
   TriMesh erodedMesh = reference.skin;
   erodedMesh.V = r.erodedSkin;
   r.erodedBody = meshing::bodySignedDistance(erodedMesh);
-  endStage("eroded skin distance");
+  clock.end("eroded skin distance");
   r.referenceBody = meshing::bodySignedDistance(reference.skin);
-  endStage("reference skin distance");
+  clock.end("reference skin distance");
   transfer::AnatomyTransferOptions transferOptions = options.transfer;
   transferOptions.targetSkinDistance = &r.erodedBody.signedDistance;
   transferOptions.referenceSkinDistance = &r.referenceBody.signedDistance;

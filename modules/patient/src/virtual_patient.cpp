@@ -1,6 +1,7 @@
 #include "vesalius/patient/virtual_patient.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/stage_clock.h"
 #include "vesalius/fat/fat_forest.h"
 #include "vesalius/fat/thickness_at_vertices.h"
 #include "vesalius/meshing/label_surface.h"
@@ -8,25 +9,10 @@
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
-#include <chrono>
 
 namespace vesalius::patient {
 
 namespace {
-
-class StageClock {
- public:
-  explicit StageClock(VirtualPatient& patient) : patient_(patient) {}
-  void end(const std::string& stage) {
-    const auto now = std::chrono::steady_clock::now();
-    patient_.stageSeconds.emplace_back(stage, std::chrono::duration<double>(now - start_).count());
-    start_ = now;
-  }
-
- private:
-  VirtualPatient& patient_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 // Without an organ map: the skin and the scan's bone class as one bone, the sagittal plane through the
 // skin's centroid across the scan's left-right axis.
@@ -101,7 +87,7 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
                                    const std::string& organsSource, Progress* progress) {
   if (organs) checkOrganMap(ct, *organs, templates, scanSource, organsSource);
   VirtualPatient patient;
-  StageClock clock(patient);
+  StageClock clock(patient.stageSeconds);
   try {
     patient.tissueClasses = segmentation::segmentCtTissues(ct, {}, progress);
   } catch (const BadInput& e) {
