@@ -24,11 +24,11 @@ const LabelMap& input() {
   return map;
 }
 
-// A fresh output path (and no label table beside it) in this test's folder.
+// A fresh output path (and no label tables beside it) in this test's folder.
 std::string outputPath(const std::string& name) {
   const fs::path path = fs::path(outputDir()) / name;
   fs::remove(path);
-  fs::remove(io::labelTableSidecarPath(path.string()));
+  for (const std::string& table : io::labelTableSidecarPaths(path.string())) fs::remove(table);
   return path.string();
 }
 

@@ -99,7 +99,7 @@ TEST(CliTetmesh, BodyWithABoneInside) {
   const long bone = std::count(map.labels.values.begin(), map.labels.values.end(), 5);
   const long soft = std::count(map.labels.values.begin(), map.labels.values.end(), 1) + pocketVoxels;
   const std::string labels = outputPath("ball.nii.gz");
-  fs::remove(outputPath("ball.tsv"));
+  for (const std::string& table : io::labelTableSidecarPaths(labels)) fs::remove(table);
   io::writeLabelMap(labels, map);
   const std::string out = outputPath("ball.vtu");
   const CommandResult r = runVesalius({"tetmesh", "--labels", labels, "--label", "bone", "--body", "1", "--out", out});
@@ -169,7 +169,7 @@ TEST(CliTetmesh, BoneReachingTheBodySurfaceKeepsItsVolume) {
   const long bone = std::count(map.labels.values.begin(), map.labels.values.end(), 5);
   const long soft = std::count(map.labels.values.begin(), map.labels.values.end(), 1);
   const std::string labels = outputPath("poking.nii.gz");
-  fs::remove(outputPath("poking.tsv"));
+  for (const std::string& table : io::labelTableSidecarPaths(labels)) fs::remove(table);
   io::writeLabelMap(labels, map);
   const std::string out = outputPath("poking.vtu");
   const CommandResult r =
@@ -195,7 +195,7 @@ TEST(CliTetmesh, LabelMapOverTheSizeCapIsResampled) {
       for (int i = 20; i < 280; ++i)
         if (Eigen::Vector2d(j - 14.5, k - 14.5).norm() < 10) map.labels.at(i, j, k) = 2, ++voxels;
   const std::string labels = outputPath("rod.nii.gz");
-  fs::remove(outputPath("rod.tsv"));
+  for (const std::string& table : io::labelTableSidecarPaths(labels)) fs::remove(table);
   io::writeLabelMap(labels, map);
   const std::string out = outputPath("rod.vtu");
   const CommandResult r = runVesalius({"tetmesh", "--labels", labels, "--out", out});

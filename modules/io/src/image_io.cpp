@@ -6,6 +6,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/label_table_io.h"
+#include "vesalius/io/slicer_segmentation.h"
 
 #include <algorithm>
 #include <array>
@@ -239,12 +240,14 @@ Grid<Label> readLabelGrid(const std::string& path) {
   return grid;
 }
 
-// The explicit table, else a sidecar `<stem>.tsv` or `<stem>.txt`, else an empty table.
+// The explicit table, else the first sidecar found beside the map (labelTableSidecarPaths, then
+// `<stem>.csv` if it is a Slicer colour table and `<stem>.txt`), else an empty table.
 LabelTable labelTableFor(const std::string& labelMapPath, const std::string& tablePath) {
   if (!tablePath.empty()) return readLabelTable(tablePath);
-  const std::string stem = pathStem(labelMapPath);
-  for (const char* extension : {".tsv", ".txt"})
-    if (fs::is_regular_file(stem + extension)) return readLabelTable(stem + extension);
+  std::vector<std::string> candidates = labelTableSidecarPaths(labelMapPath);
+  for (const char* extension : {".csv", ".txt"}) candidates.push_back(pathStem(labelMapPath) + extension);
+  for (const std::string& candidate : candidates)
+    if (fs::is_regular_file(candidate) && isLabelTableFile(candidate)) return readLabelTable(candidate);
   return {};
 }
 
@@ -298,6 +301,13 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
   if (format == ScanFormat::DicomFile || format == ScanFormat::DicomFolder)
     throw BadInput(path, "label maps are read from NIfTI, NRRD or MetaImage files, not DICOM");
   LabelMap labelMap;
+  if (isSlicerSegmentationPath(path)) {
+    // The segments name themselves; an explicit table still wins.
+    labelMap = mergeSegmentationLayers(readSlicerSegmentation(path), path);
+    if (!tablePath.empty()) labelMap.table = readLabelTable(tablePath);
+    nameUnlistedLabels(labelMap.labels.values, labelMap.table);
+    return labelMap;
+  }
   labelMap.labels = readLabelGrid(path);
   labelMap.table = labelTableFor(path, tablePath);
   nameUnlistedLabels(labelMap.labels.values, labelMap.table);
@@ -305,28 +315,44 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
 }
 
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options) {
+  if (isSlicerSegmentationPath(path)) return writeSlicerSegmentation(path, labelMap, options);
   checkWritableFormat(path);
   const Grid<Label>& labels = labelMap.labels;
   checkValueCount(labels.geometry, labels.values.size(), path);
-  const std::string tablePath = labelTableSidecarPath(path);
+  const std::vector<std::string> tablePaths = labelTableSidecarPaths(path);
   checkNotExisting(path, options);
-  checkNotExisting(tablePath, options);
+  for (const std::string& tablePath : tablePaths) checkNotExisting(tablePath, options);
+  // The tables are made before the labels are written, so a name no table format can carry writes nothing.
+  const std::array<LabelTableFormat, 3> formats{
+      {LabelTableFormat::Tsv, LabelTableFormat::SlicerColorTable, LabelTableFormat::ItkSnap}};
   const Label largest =
       labels.values.empty() ? 0 : *std::max_element(labels.values.begin(), labels.values.end());
   const std::vector<float> values(labels.values.begin(), labels.values.end());
   writeImage(path, options,
              rawHeaderOf(labels.geometry, largest < 256 ? PixelType::UInt8 : PixelType::UInt16), values);
+  std::vector<std::string> written{path};
   try {
-    writeLabelTable(tablePath, labelMap.table, options);
+    for (std::size_t k = 0; k < formats.size(); ++k) {
+      writeLabelTable(tablePaths[k], labelMap.table, options, formats[k]);
+      written.push_back(tablePaths[k]);
+    }
   } catch (...) {
-    // Labels without their table would read back with made-up names (a full disk can fail the table
-    // alone), so the labels go too.
+    // Labels without their tables would read back with made-up names (a full disk can fail a table
+    // alone), so what was written goes too.
     std::error_code ignored;
-    fs::remove(path, ignored);
+    for (const std::string& file : written) fs::remove(file, ignored);
     throw;
   }
 }
 
-std::string labelTableSidecarPath(const std::string& labelMapPath) { return pathStem(labelMapPath) + ".tsv"; }
+std::string labelTableSidecarPath(const std::string& labelMapPath) {
+  return isSlicerSegmentationPath(labelMapPath) ? labelMapPath : pathStem(labelMapPath) + ".tsv";
+}
+
+std::vector<std::string> labelTableSidecarPaths(const std::string& labelMapPath) {
+  if (isSlicerSegmentationPath(labelMapPath)) return {};
+  const std::string stem = pathStem(labelMapPath);
+  return {stem + ".tsv", stem + ".ctbl", stem + ".label.txt"};
+}
 
 }  // namespace vesalius::io

@@ -15,6 +15,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace vesalius::io {
 
@@ -56,17 +57,27 @@ ScanInfo describeScan(const std::string& path, const ScanReadOptions& options = 
 
 // Reads a label map (NIfTI, NRRD, MetaImage) as uint16 labels. Stored values of any type must be whole
 // numbers in 0..65535 (TotalSegmentator v1 stores float64), else BadInput naming a voxel.
-// The table comes from `tablePath` if given, else from the sidecar `<stem>.tsv` or `<stem>.txt` beside the
-// file (label_table_io.h); labels present in the image but not in the table are named "label_<id>" with
-// defaultLabelColor(id).
+// The table comes from `tablePath` if given, else from the first label table found beside the file:
+// `<stem>.tsv`, `<stem>.ctbl`, `<stem>.label.txt`, `<stem>.csv` if it is a Slicer colour table (a marker
+// CSV is passed over), `<stem>.txt` (label_table_io.h); labels present in the image but not in the table are
+// named "label_<id>" with defaultLabelColor(id).
+// A 3D Slicer segmentation (.seg.nrrd) names its own segments (slicer_segmentation.h); its layers are
+// merged into one map, and overlapping segments throw BadInput naming them.
 LabelMap readLabelMap(const std::string& path, const std::string& tablePath = "");
 
-// Writes the labels (uint8 if every id is below 256, else uint16) and the table as the sidecar
-// labelTableSidecarPath(path), both atomically; neither is written if either exists and !options.force,
-// and the labels are removed again if the table cannot be written.
+// Writes the labels (uint8 if every id is below 256, else uint16) and the table three times beside them,
+// so that 3D Slicer and ITK-SNAP find names and colours too (labelTableSidecarPaths: our TSV, a Slicer
+// colour table, an ITK-SNAP label description file), all atomically; none is written if any exists and
+// !options.force, and the labels and tables written are removed again if a table cannot be written.
+// A path ending .seg.nrrd is written as a Slicer segmentation carrying the table itself, without sidecars.
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options = {});
 
-// "<stem>.tsv" beside a label map path: "seg/body.nii.gz" -> "seg/body.tsv".
+// The file that holds a label map's table: "<stem>.tsv" beside it ("seg/body.nii.gz" -> "seg/body.tsv"),
+// or the path itself for a .seg.nrrd.
 std::string labelTableSidecarPath(const std::string& labelMapPath);
+
+// Every table writeLabelMap writes beside a label map: "seg/body.nii.gz" -> "seg/body.tsv",
+// "seg/body.ctbl" (3D Slicer), "seg/body.label.txt" (ITK-SNAP); none for a .seg.nrrd.
+std::vector<std::string> labelTableSidecarPaths(const std::string& labelMapPath);
 
 }  // namespace vesalius::io
