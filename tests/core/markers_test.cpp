@@ -25,6 +25,11 @@ TEST(MarkerSet, KindAndStatusNames) {
   EXPECT_STREQ(markerStatusName(MarkerStatus::Defined), "defined");
   EXPECT_STREQ(markerStatusName(MarkerStatus::Undefined), "undefined");
   EXPECT_STREQ(markerStatusName(MarkerStatus::Preview), "preview");
+  EXPECT_STREQ(markerStatusName(MarkerStatus::Missing), "missing");
+  EXPECT_TRUE(hasPosition(MarkerStatus::Defined));
+  EXPECT_TRUE(hasPosition(MarkerStatus::Preview));
+  EXPECT_FALSE(hasPosition(MarkerStatus::Undefined));
+  EXPECT_FALSE(hasPosition(MarkerStatus::Missing));
 }
 
 TEST(MarkerSet, CountsByKindAndDefinedState) {
@@ -43,9 +48,16 @@ TEST(MarkerSet, CountsByKindAndDefinedState) {
 TEST(MarkerSet, ValidateRejectsNonFiniteDefinedPositionsOnly) {
   MarkerSet s;
   s.markers = {marker(MarkerKind::Landmark, MarkerStatus::Defined, 1),
-               marker(MarkerKind::Landmark, MarkerStatus::Undefined, 0)};
+               marker(MarkerKind::Landmark, MarkerStatus::Undefined, 0),
+               marker(MarkerKind::Landmark, MarkerStatus::Missing, 0)};
   s.markers[1].position.x() = std::numeric_limits<double>::quiet_NaN();
+  s.markers[2].position.y() = std::numeric_limits<double>::infinity();
   EXPECT_NO_THROW(s.validate("points.mrk.json"));
+  s.markers[1].color = Eigen::Vector3d(0.5, 1.0, 0.0);
+  EXPECT_NO_THROW(s.validate("points.mrk.json"));
+  s.markers[1].color = Eigen::Vector3d(0.5, 255.0, 0.0);
+  EXPECT_THROW(s.validate("points.mrk.json"), BadInput);
+  s.markers[1].color.reset();
   s.markers[0].position.z() = std::numeric_limits<double>::infinity();
   try {
     s.validate("points.mrk.json");

@@ -20,9 +20,12 @@ const char* markerStatusName(MarkerStatus s) {
     case MarkerStatus::Defined: return "defined";
     case MarkerStatus::Undefined: return "undefined";
     case MarkerStatus::Preview: return "preview";
+    case MarkerStatus::Missing: return "missing";
   }
   return "defined";
 }
+
+bool hasPosition(MarkerStatus s) { return s == MarkerStatus::Defined || s == MarkerStatus::Preview; }
 
 std::size_t MarkerSet::count(MarkerKind k) const {
   return std::count_if(markers.begin(), markers.end(), [k](const Marker& m) { return m.kind == k; });
@@ -36,11 +39,14 @@ std::size_t MarkerSet::countDefined() const {
 void MarkerSet::validate(const std::string& source) const {
   for (std::size_t i = 0; i < markers.size(); ++i) {
     const Marker& m = markers[i];
-    if (m.status != MarkerStatus::Undefined && !m.position.allFinite())
+    if (hasPosition(m.status) && !m.position.allFinite())
       throw BadInput(source, "marker " + std::to_string(i + 1) + " ('" + m.label + "') has a non-finite position");
     if (m.templatePosition && !m.templatePosition->allFinite())
       throw BadInput(source, "marker " + std::to_string(i + 1) + " ('" + m.label +
                                  "') has a non-finite template position");
+    if (m.color && !(m.color->array() >= 0.0 && m.color->array() <= 1.0).all())
+      throw BadInput(source, "marker " + std::to_string(i + 1) + " ('" + m.label +
+                                 "') has a colour outside [0, 1]");
   }
 }
 

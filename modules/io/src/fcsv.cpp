@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <set>
 #include <string>
 
 namespace vesalius::io {
@@ -57,8 +58,25 @@ std::vector<std::string> splitCsvRow(std::string_view line, const LineReader& re
       state = State::Unquoted;
     }
   }
+  // A quote left open would take the rest of the row, separators and all, into one field.
+  if (state == State::Quoted)
+    reader.fail("field " + std::to_string(fields.size() + 1) + " opens a quote that is never closed");
   fields.push_back(std::move(field));
   return fields;
+}
+
+std::vector<std::string> uniqueMarkerIds(const std::vector<const Marker*>& markers) {
+  std::set<std::string> taken;
+  std::vector<std::string> ids;
+  for (const Marker* m : markers) ids.push_back(!m->id.empty() && taken.insert(m->id).second ? m->id : "");
+  int next = 1;
+  for (std::string& id : ids) {
+    if (!id.empty()) continue;
+    while (taken.count(std::to_string(next))) ++next;
+    id = std::to_string(next);
+    taken.insert(id);
+  }
+  return ids;
 }
 
 std::string quoteCsvField(const std::string& field, char separator) {
@@ -76,9 +94,15 @@ constexpr const char* kColumns[] = {"id", "x",   "y",   "z",    "ow",    "ox",  
                                     "oz", "vis", "sel", "lock", "label", "desc", "associatedNodeID"};
 constexpr std::size_t kColumnCount = sizeof kColumns / sizeof kColumns[0];
 
+// Slicer 3's fiducial list, which Slicer reads when a file has no version line: one point per row as
+// label,x,y,z,sel,vis, RAS, no quoting.
+constexpr const char* kSlicer3Columns[] = {"label", "x", "y", "z", "sel", "vis"};
+constexpr std::size_t kSlicer3ColumnCount = sizeof kSlicer3Columns / sizeof kSlicer3Columns[0];
+
 struct FcsvHeader {
   bool versioned = false;
   double xySign = -1.0;  // RAS, as files from before the CoordinateSystem line were
+  std::string name;      // Slicer 3's "# name = ..."
 };
 
 double coordinateSign(std::string_view value, const LineReader& reader) {
@@ -89,8 +113,16 @@ double coordinateSign(std::string_view value, const LineReader& reader) {
   reader.fail("unknown CoordinateSystem '" + printable(value) + "' (LPS, RAS, 0 or 1)");
 }
 
-void checkColumns(std::string_view value, const LineReader& reader) {
+void checkColumns(std::string_view value, const FcsvHeader& header, const LineReader& reader) {
   const std::vector<std::string> names = splitCsvRow(value, reader);
+  if (!header.versioned) {  // Slicer 3
+    bool slicer3 = names.size() >= 4 && names.size() <= kSlicer3ColumnCount;
+    for (std::size_t i = 0; slicer3 && i < names.size(); ++i) slicer3 = trim(names[i]) == kSlicer3Columns[i];
+    if (!slicer3)
+      reader.fail("unsupported columns '" + printable(value) +
+                  "' (a file without '# Markups fiducial file version' is Slicer 3's: label,x,y,z,sel,vis)");
+    return;
+  }
   bool standard = names.size() >= kColumnCount;
   for (std::size_t i = 0; standard && i < kColumnCount; ++i) standard = trim(names[i]) == kColumns[i];
   if (!standard)
@@ -108,7 +140,9 @@ void readHeaderLine(std::string_view line, FcsvHeader& header, const LineReader&
   else if (name == "CoordinateSystem")
     header.xySign = coordinateSign(value, reader);
   else if (name == "columns")
-    checkColumns(value, reader);
+    checkColumns(value, header, reader);
+  else if (name == "name" && !header.versioned)
+    header.name = std::string(value);
 }
 
 bool present(const std::vector<std::string>& fields, std::size_t i) {
@@ -129,8 +163,10 @@ MarkerStatus statusField(const std::vector<std::string>& fields, const LineReade
       return MarkerStatus::Preview;
     case 2:
       return MarkerStatus::Defined;
+    case 3:
+      return MarkerStatus::Missing;
     default:
-      reader.fail("position status must be 0 (undefined), 1 (preview) or 2 (defined)");
+      reader.fail("position status must be 0 (undefined), 1 (preview), 2 (defined) or 3 (missing)");
   }
 }
 
@@ -141,6 +177,7 @@ Marker readRow(std::string_view line, const FcsvHeader& header, MarkerKind kind,
     reader.fail(std::to_string(f.size()) + " fields, at most 16 expected (an unquoted comma in a label?)");
   Marker m;
   m.kind = kind;
+  m.id = std::string(trim(f[0]));
   Eigen::Vector3d p;
   for (int i = 0; i < 3; ++i) p[i] = parseDouble(trim(f[1 + i]), reader, kColumns[1 + i]);
   m.position = Eigen::Vector3d(header.xySign * p.x(), header.xySign * p.y(), p.z());
@@ -152,11 +189,44 @@ Marker readRow(std::string_view line, const FcsvHeader& header, MarkerKind kind,
   m.locked = flagField(f, 10, false, reader);
   if (f.size() > 11) m.label = f[11];
   if (f.size() > 12) m.description = f[12];
+  if (f.size() > 13) m.associatedNodeID = std::string(trim(f[13]));
   m.status = statusField(f, reader);
   return m;
 }
 
-int statusCode(MarkerStatus s) { return s == MarkerStatus::Undefined ? 0 : s == MarkerStatus::Preview ? 1 : 2; }
+// Split on every comma, as Slicer splits a Slicer 3 row (its labels are not quoted).
+Marker readSlicer3Row(std::string_view line, MarkerKind kind, const LineReader& reader) {
+  if (line.find('\r') != std::string_view::npos) reader.fail("carriage return inside a line");
+  std::vector<std::string_view> f;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    f.push_back(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (f.size() < 4 || f.size() > kSlicer3ColumnCount)
+    reader.fail("a Slicer 3 row (no version line) is label,x,y,z[,sel,vis], found " + std::to_string(f.size()) +
+                " fields");
+  Marker m;
+  m.kind = kind;
+  m.label = std::string(f[0]);
+  for (int i = 0; i < 3; ++i) m.position[i] = parseDouble(trim(f[1 + std::size_t(i)]), reader, kSlicer3Columns[1 + i]);
+  m.position.x() = -m.position.x();  // RAS
+  m.position.y() = -m.position.y();
+  if (f.size() > 4 && !trim(f[4]).empty()) m.selected = parseInteger(trim(f[4]), reader, "sel") != 0;
+  if (f.size() > 5 && !trim(f[5]).empty()) m.visible = parseInteger(trim(f[5]), reader, "vis") != 0;
+  return m;
+}
+
+int statusCode(MarkerStatus s) {
+  switch (s) {
+    case MarkerStatus::Undefined: return 0;
+    case MarkerStatus::Preview: return 1;
+    case MarkerStatus::Defined: return 2;
+    case MarkerStatus::Missing: return 3;
+  }
+  return 2;
+}
 
 }  // namespace
 
@@ -171,11 +241,10 @@ MarkerSet parseFcsv(std::string_view text, const std::string& source, MarkerKind
       readHeaderLine(line, header, reader);
       continue;
     }
-    if (!header.versioned)
-      reader.fail("no '# Markups fiducial file version' line before the points (Slicer 3 files are not supported)");
-    set.markers.push_back(readRow(line, header, defaultKind, reader));
+    set.markers.push_back(header.versioned ? readRow(line, header, defaultKind, reader)
+                                           : readSlicer3Row(line, defaultKind, reader));
   }
-  if (!header.versioned) throw BadInput(source, "not a Slicer .fcsv file: no '# Markups fiducial file version' line");
+  set.name = header.name;
   return set;
 }
 
@@ -184,13 +253,17 @@ std::string formatFcsv(const MarkerSet& set) {
       "# Markups fiducial file version = 4.11\n"
       "# CoordinateSystem = LPS\n"
       "# columns = id,x,y,z,ow,ox,oy,oz,vis,sel,lock,label,desc,associatedNodeID\n";
-  int id = 0;
-  for (const Marker& m : set.markers) {
-    const Eigen::Vector3d p = m.position.allFinite() ? m.position : Eigen::Vector3d::Zero();
-    out += std::to_string(++id) + "," + formatShortest(p.x()) + "," + formatShortest(p.y()) + "," +
+  std::vector<const Marker*> markers;
+  for (const Marker& m : set.markers) markers.push_back(&m);
+  const std::vector<std::string> ids = uniqueMarkerIds(markers);
+  for (std::size_t i = 0; i < set.markers.size(); ++i) {
+    const Marker& m = set.markers[i];
+    // Slicer writes the stored coordinates of a point without a position; ours are zero.
+    const Eigen::Vector3d p = hasPosition(m.status) && m.position.allFinite() ? m.position : Eigen::Vector3d::Zero();
+    out += quoteCsvField(ids[i]) + "," + formatShortest(p.x()) + "," + formatShortest(p.y()) + "," +
            formatShortest(p.z()) + ",0,0,0,1," + (m.visible ? "1," : "0,") + (m.selected ? "1," : "0,") +
-           (m.locked ? "1," : "0,") + quoteCsvField(m.label) + "," + quoteCsvField(m.description) + ",," +
-           std::to_string(statusCode(m.status)) + ",0\n";
+           (m.locked ? "1," : "0,") + quoteCsvField(m.label) + "," + quoteCsvField(m.description) + "," +
+           quoteCsvField(m.associatedNodeID) + "," + std::to_string(statusCode(m.status)) + ",0\n";
   }
   return out;
 }

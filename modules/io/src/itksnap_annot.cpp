@@ -3,6 +3,7 @@
 #include "vesalius/io/marker_formats.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/text_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -213,6 +214,22 @@ Marker readLandmark(const Registry& registry, const std::string& prefix, const G
   m.kind = kind;
   auto text = registry.find(prefix + "Text");
   if (text != registry.end()) m.label = text->second;
+  // Colour and tags as AbstractAnnotation::Save writes them: "r g b" in [0, 1]; "a,b,c".
+  auto color = registry.find(prefix + "Color");
+  double rgb[3];
+  if (color != registry.end()) {
+    if (!parseNumbers(color->second, rgb, 3) || *std::min_element(rgb, rgb + 3) < 0.0 || *std::max_element(rgb, rgb + 3) > 1.0)
+      throw BadInput(source, printable(prefix, 100) + "Color must be three numbers in [0, 1]");
+    m.color = Eigen::Vector3d(rgb[0], rgb[1], rgb[2]);
+  }
+  auto tags = registry.find(prefix + "Tags");
+  if (tags != registry.end())
+    for (std::size_t start = 0; start <= tags->second.size();) {
+      const std::size_t comma = std::min(tags->second.find(',', start), tags->second.size());
+      const std::string_view tag = trim(std::string_view(tags->second).substr(start, comma - start));
+      if (!tag.empty()) m.tags.emplace_back(tag);
+      start = comma + 1;
+    }
   // ITK-SNAP image coordinates put voxel i's centre at i + 0.5.
   m.position = scan.indexToWorld(Eigen::Vector3d(index[0], index[1], index[2]) - Eigen::Vector3d::Constant(0.5));
   return m;
@@ -273,13 +290,29 @@ std::string entry(const std::string& indent, const std::string& key, const std::
   return indent + "<entry key=\"" + encodeXml(key) + "\" value=\"" + encodeXml(value) + "\" />\n";
 }
 
+std::string threeNumbers(const Eigen::Vector3d& v) {
+  return formatShortest(v.x()) + " " + formatShortest(v.y()) + " " + formatShortest(v.z());
+}
+
+// ITK-SNAP splits its tag list at commas and keeps the first word of each.
+std::string tagList(const Marker& m) {
+  std::string list;
+  for (const std::string& tag : m.tags) {
+    if (tag.empty() || tag.find_first_of(", \t\n\r") != std::string::npos)
+      throw UsageError("tag '" + printable(tag) + "' of marker '" + printable(m.label) +
+                       "' cannot be written to an ITK-SNAP annotation file (a tag is one word without commas)");
+    list += (list.empty() ? "" : ",") + tag;
+  }
+  return list;
+}
+
 std::string landmarkFolder(const Marker& m, const GridGeometry& scan) {
   const Eigen::Vector3d pos = scan.worldToIndex(m.position) + Eigen::Vector3d::Constant(0.5);
   const std::string in = "      ";
-  // Entries in the order Registry's std::map writes them.
-  return entry(in, "Color", "1 0 0") + entry(in, "Offset", "5 5") + entry(in, "Plane", "2") +
-         entry(in, "Pos", formatShortest(pos.x()) + " " + formatShortest(pos.y()) + " " + formatShortest(pos.z())) +
-         entry(in, "Selected", "0") + entry(in, "Text", m.label) + entry(in, "Type", "LandmarkAnnotation") +
+  // Entries in the order Registry's std::map writes them; red is ITK-SNAP's default colour.
+  return entry(in, "Color", threeNumbers(m.color.value_or(Eigen::Vector3d(1, 0, 0)))) + entry(in, "Offset", "5 5") +
+         entry(in, "Plane", "2") + entry(in, "Pos", threeNumbers(pos)) + entry(in, "Selected", "0") +
+         entry(in, "Tags", tagList(m)) + entry(in, "Text", m.label) + entry(in, "Type", "LandmarkAnnotation") +
          entry(in, "VisibleInAllPlanes", "1") + entry(in, "VisibleInAllSlices", "0");
 }
 

@@ -1,4 +1,5 @@
-// Plain CSV marker tables: label,l,p,s[,kind,status] or label,r,a,s[,...]. See marker_formats.h.
+// Plain CSV marker tables: label,l,p,s[,...] or label,r,a,s[,...], a superset of the table 3D Slicer's
+// markups logic exports (ExportControlPointsToCSV). See marker_formats.h.
 #include "vesalius/io/marker_formats.h"
 
 #include "vesalius/core/error.h"
@@ -6,13 +7,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <optional>
 
 namespace vesalius::io {
 
 namespace {
 
 struct CsvColumns {
-  int label = -1, kind = -1, status = -1;
+  int label = -1, kind = -1, status = -1, defined = -1, selected = -1, visible = -1, locked = -1,
+      description = -1, id = -1, associatedNodeID = -1, color = -1, tags = -1;
   int coordinate[3] = {-1, -1, -1};
   double xySign = 1.0;       // -1 for r,a,s
   std::size_t required = 0;  // fields a row must have
@@ -51,6 +54,15 @@ CsvColumns readHeader(std::string_view line, const LineReader& reader) {
   c.xySign = hasRas ? -1.0 : 1.0;
   c.kind = columnOf(names, "kind");
   c.status = columnOf(names, "status");
+  c.defined = columnOf(names, "defined");
+  c.selected = columnOf(names, "selected");
+  c.visible = columnOf(names, "visible");
+  c.locked = columnOf(names, "locked");
+  c.description = columnOf(names, "description");
+  c.id = columnOf(names, "id");
+  c.associatedNodeID = columnOf(names, "associatednodeid");
+  c.color = columnOf(names, "color");
+  c.tags = columnOf(names, "tags");
   c.required = std::size_t(std::max({c.label, c.coordinate[0], c.coordinate[1], c.coordinate[2]})) + 1;
   return c;
 }
@@ -66,11 +78,46 @@ MarkerKind kindValue(std::string_view v, MarkerKind fallback, const LineReader& 
   reader.fail("unknown kind '" + printable(v) + "' (landmark, icp or attachment)");
 }
 
-MarkerStatus statusValue(std::string_view v, const LineReader& reader) {
-  if (v.empty()) return MarkerStatus::Defined;
-  for (MarkerStatus s : {MarkerStatus::Defined, MarkerStatus::Undefined, MarkerStatus::Preview})
-    if (lowerTrimmed(v) == markerStatusName(s)) return s;
-  reader.fail("unknown status '" + printable(v) + "' (defined, undefined or preview)");
+// Slicer writes its bit columns as 0 and 1.
+bool flagValue(std::string_view v, bool fallback, const char* what, const LineReader& reader) {
+  const std::string s = lowerTrimmed(v);
+  if (s.empty()) return fallback;
+  if (s == "true") return true;
+  if (s == "false") return false;
+  return parseInteger(s, reader, what) != 0;
+}
+
+// "status" says it in full; Slicer's "defined" column says only defined or not (undefined).
+MarkerStatus statusValue(std::string_view status, std::string_view defined, const LineReader& reader) {
+  if (!status.empty()) {
+    for (MarkerStatus s : {MarkerStatus::Defined, MarkerStatus::Undefined, MarkerStatus::Preview, MarkerStatus::Missing})
+      if (lowerTrimmed(status) == markerStatusName(s)) return s;
+    reader.fail("unknown status '" + printable(status) + "' (defined, undefined, preview or missing)");
+  }
+  return flagValue(defined, true, "defined", reader) ? MarkerStatus::Defined : MarkerStatus::Undefined;
+}
+
+std::optional<Eigen::Vector3d> colorValue(std::string_view v, const LineReader& reader) {
+  const std::vector<std::string_view> parts = splitWhitespace(v);
+  if (parts.empty()) return std::nullopt;
+  if (parts.size() != 3) reader.fail("color must be three numbers 'r g b' in [0, 1]");
+  Eigen::Vector3d c;
+  for (int i = 0; i < 3; ++i) {
+    c[i] = parseDouble(parts[std::size_t(i)], reader, "color");
+    if (c[i] < 0.0 || c[i] > 1.0) reader.fail("color must be three numbers 'r g b' in [0, 1]");
+  }
+  return c;
+}
+
+std::vector<std::string> tagsValue(std::string_view v) {
+  std::vector<std::string> tags;
+  for (std::size_t start = 0; start <= v.size();) {
+    const std::size_t comma = std::min(v.find(',', start), v.size());
+    const std::string_view tag = trim(v.substr(start, comma - start));
+    if (!tag.empty()) tags.emplace_back(tag);
+    start = comma + 1;
+  }
+  return tags;
 }
 
 Marker readRow(std::string_view line, const CsvColumns& c, MarkerKind defaultKind, const LineReader& reader) {
@@ -80,11 +127,19 @@ Marker readRow(std::string_view line, const CsvColumns& c, MarkerKind defaultKin
   Marker m;
   m.label = std::string(field(f, c.label));
   m.kind = kindValue(field(f, c.kind), defaultKind, reader);
-  m.status = statusValue(field(f, c.status), reader);
+  m.status = statusValue(field(f, c.status), field(f, c.defined), reader);
+  m.selected = flagValue(field(f, c.selected), true, "selected", reader);
+  m.visible = flagValue(field(f, c.visible), true, "visible", reader);
+  m.locked = flagValue(field(f, c.locked), false, "locked", reader);
+  if (c.description >= 0 && std::size_t(c.description) < f.size()) m.description = f[std::size_t(c.description)];
+  m.id = std::string(field(f, c.id));
+  m.associatedNodeID = std::string(field(f, c.associatedNodeID));
+  m.color = colorValue(field(f, c.color), reader);
+  m.tags = tagsValue(field(f, c.tags));
   static const char* const names[3] = {"x coordinate", "y coordinate", "z coordinate"};
   bool empty = true;
   for (int i = 0; i < 3; ++i) empty = empty && field(f, c.coordinate[i]).empty();
-  if (empty && m.status == MarkerStatus::Undefined) return m;
+  if (empty && !hasPosition(m.status)) return m;
   for (int i = 0; i < 3; ++i) m.position[i] = parseDouble(field(f, c.coordinate[i]), reader, names[i]);
   m.position.x() *= c.xySign;
   m.position.y() *= c.xySign;
@@ -113,15 +168,28 @@ MarkerSet parseMarkerCsv(std::string_view text, const std::string& source, Marke
 }
 
 std::string formatMarkerCsv(const MarkerSet& set) {
-  std::string out = "label,l,p,s,kind,status\n";
+  std::string out = "label,l,p,s,defined,selected,visible,locked,description,kind,status,id,associatedNodeID,color,tags\n";
   for (const Marker& m : set.markers) {
     out += quoteCsvField(m.label) + ",";
-    if (m.status != MarkerStatus::Undefined)
+    if (hasPosition(m.status))
       out += formatShortest(m.position.x()) + "," + formatShortest(m.position.y()) + "," +
              formatShortest(m.position.z()) + ",";
     else
       out += ",,,";
-    out += std::string(markerKindName(m.kind)) + "," + markerStatusName(m.status) + "\n";
+    out += std::string(m.status == MarkerStatus::Defined ? "1," : "0,") + (m.selected ? "1," : "0,") +
+           (m.visible ? "1," : "0,") + (m.locked ? "1," : "0,") + quoteCsvField(m.description) + "," +
+           markerKindName(m.kind) + "," + markerStatusName(m.status) + "," + quoteCsvField(m.id) + "," +
+           quoteCsvField(m.associatedNodeID) + ",";
+    if (m.color)
+      out += formatShortest(m.color->x()) + " " + formatShortest(m.color->y()) + " " + formatShortest(m.color->z());
+    std::string tags;
+    for (const std::string& tag : m.tags) {
+      if (tag.find(',') != std::string::npos || trim(tag).size() != tag.size() || tag.empty())
+        throw UsageError("tag '" + printable(tag) + "' of marker '" + printable(m.label) +
+                         "' cannot be written: tags are comma-separated and trimmed");
+      tags += (tags.empty() ? "" : ",") + tag;
+    }
+    out += "," + quoteCsvField(tags) + "\n";
   }
   return out;
 }

@@ -10,6 +10,8 @@
 #include <cctype>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace vesalius::io {
 
@@ -96,7 +98,8 @@ MarkerStatus statusMember(const Json& point, const Context& ctx) {
   if (s.empty() || s == "defined") return MarkerStatus::Defined;
   if (s == "undefined") return MarkerStatus::Undefined;
   if (s == "preview") return MarkerStatus::Preview;
-  ctx.fail("unknown positionStatus '" + s + "' (defined, undefined or preview)");
+  if (s == "missing") return MarkerStatus::Missing;
+  ctx.fail("unknown positionStatus '" + s + "' (defined, undefined, preview or missing)");
 }
 
 Marker readControlPoint(const Json& point, MarkerKind kind, const Conversion& c, const Context& ctx) {
@@ -105,6 +108,8 @@ Marker readControlPoint(const Json& point, MarkerKind kind, const Conversion& c,
   m.kind = kind;
   m.label = stringMember(point, "label", ctx);
   m.description = stringMember(point, "description", ctx);
+  m.id = stringMember(point, "id", ctx);
+  m.associatedNodeID = stringMember(point, "associatedNodeID", ctx);
   m.status = statusMember(point, ctx);
   const Json* position = member(point, "position");
   // Slicer writes "position": "" for a point without a position and reads a missing one as undefined.
@@ -116,6 +121,17 @@ Marker readControlPoint(const Json& point, MarkerKind kind, const Conversion& c,
     if (!extra->is_object()) ctx.fail("\"vesalius\" must be an object");
     if (const Json* t = member(*extra, "templatePosition"))
       m.templatePosition = vectorValue(*t, "templatePosition", c, ctx);
+    if (const Json* color = member(*extra, "color")) {
+      m.color = vectorValue(*color, "color", Conversion{}, ctx);
+      if (!(m.color->array() >= 0.0 && m.color->array() <= 1.0).all()) ctx.fail("color must lie in [0, 1]");
+    }
+    if (const Json* tags = member(*extra, "tags")) {
+      if (!tags->is_array()) ctx.fail("\"tags\" must be an array of strings");
+      for (const Json& tag : *tags) {
+        if (!tag.is_string()) ctx.fail("\"tags\" must be an array of strings");
+        m.tags.push_back(tag.get<std::string>());
+      }
+    }
   }
   m.selected = boolMember(point, "selected", true, ctx);
   m.locked = boolMember(point, "locked", false, ctx);
@@ -123,13 +139,30 @@ Marker readControlPoint(const Json& point, MarkerKind kind, const Conversion& c,
   return m;
 }
 
+std::string pluralKindName(MarkerKind k) {
+  const std::string singular = markerKindName(k);
+  return k == MarkerKind::IcpMarker ? singular : singular + "s";
+}
+
 std::optional<MarkerKind> kindFromMarkupName(const std::string& name) {
-  for (MarkerKind k : {MarkerKind::Landmark, MarkerKind::IcpMarker, MarkerKind::Attachment}) {
-    const std::string singular = markerKindName(k);
-    const std::string plural = k == MarkerKind::IcpMarker ? singular : singular + "s";
-    if (name == singular || name == plural) return k;
-  }
+  for (MarkerKind k : {MarkerKind::Landmark, MarkerKind::IcpMarker, MarkerKind::Attachment})
+    if (name == markerKindName(k) || name == pluralKindName(k)) return k;
   return std::nullopt;
+}
+
+// A markup name says the kind ("icp"), the set's name ("liver"), or both ("liver (icp)").
+struct MarkupName {
+  std::string setName;
+  std::optional<MarkerKind> kind;
+};
+
+MarkupName splitMarkupName(const std::string& name) {
+  if (auto kind = kindFromMarkupName(name)) return {"", kind};
+  const std::size_t open = name.rfind(" (");
+  if (open != std::string::npos && open > 0 && name.back() == ')')
+    if (auto kind = kindFromMarkupName(name.substr(open + 2, name.size() - open - 3)))
+      return {name.substr(0, open), kind};
+  return {name, std::nullopt};
 }
 
 Conversion markupConversion(const Json& markup, const Context& ctx) {
@@ -155,9 +188,9 @@ void readMarkup(const Json& markup, MarkerKind defaultKind, MarkerSet& set, Cont
   if (!markup.is_object()) ctx.fail("a markup must be an object");
   const std::string type = stringMember(markup, "type", ctx);
   if (type != "Fiducial") ctx.fail("markup type '" + type + "' holds no markers (only Fiducial point lists do)");
-  const std::string name = stringMember(markup, "name", ctx);
-  const MarkerKind kind = kindFromMarkupName(name).value_or(defaultKind);
-  if (set.name.empty() && !kindFromMarkupName(name)) set.name = name;
+  const MarkupName name = splitMarkupName(stringMember(markup, "name", ctx));
+  const MarkerKind kind = name.kind.value_or(defaultKind);
+  if (set.name.empty()) set.name = name.setName;
   const Conversion conversion = markupConversion(markup, ctx);
   const Json* points = member(markup, "controlPoints");
   if (!points) return;
@@ -218,13 +251,15 @@ namespace {
 
 OrderedJson lpsArray(const Eigen::Vector3d& p) { return OrderedJson::array({p.x(), p.y(), p.z()}); }
 
-OrderedJson controlPoint(const Marker& m, int id) {
+OrderedJson controlPoint(const Marker& m, const std::string& id) {
   OrderedJson p;
-  p["id"] = std::to_string(id);
+  p["id"] = id;
   p["label"] = m.label;
   p["description"] = m.description;
-  p["associatedNodeID"] = "";
-  if (m.status != MarkerStatus::Undefined)  // a preview point has a position too (Slicer writes it)
+  p["associatedNodeID"] = m.associatedNodeID;
+  // Slicer writes "" for every point that is not defined; a preview point keeps its position here
+  // (a suggestion is a proposed position, and Slicer reads a position of any status).
+  if (hasPosition(m.status))
     p["position"] = lpsArray(m.position);
   else
     p["position"] = "";
@@ -235,6 +270,8 @@ OrderedJson controlPoint(const Marker& m, int id) {
   p["visibility"] = m.visible;
   p["positionStatus"] = markerStatusName(m.status);
   if (m.templatePosition) p["vesalius"]["templatePosition"] = lpsArray(*m.templatePosition);
+  if (m.color) p["vesalius"]["color"] = OrderedJson::array({m.color->x(), m.color->y(), m.color->z()});
+  if (!m.tags.empty()) p["vesalius"]["tags"] = m.tags;
   return p;
 }
 
@@ -276,23 +313,35 @@ OrderedJson display(MarkerKind kind) {
   return d;
 }
 
-const char* markupName(MarkerKind kind) {
-  return kind == MarkerKind::Landmark ? "landmarks" : kind == MarkerKind::IcpMarker ? "icp" : "attachments";
+// The kind alone for an unnamed set; the set's name alone for a set of landmarks only (a Slicer point
+// list read with the default kind goes back under its own name); else "name (kind)".
+std::string markupName(const MarkerSet& set, MarkerKind kind, bool severalKinds) {
+  if (set.name.empty()) return pluralKindName(kind);
+  if (kind == MarkerKind::Landmark && !severalKinds && !splitMarkupName(set.name).kind) return set.name;
+  return set.name + " (" + pluralKindName(kind) + ")";
 }
 
-OrderedJson markup(const MarkerSet& set, MarkerKind kind) {
-  OrderedJson points = OrderedJson::array();
+OrderedJson markup(const MarkerSet& set, MarkerKind kind, bool severalKinds) {
+  std::vector<const Marker*> markers;
   for (const Marker& m : set.markers)
-    if (m.kind == kind) points.push_back(controlPoint(m, int(points.size()) + 1));
+    if (m.kind == kind) markers.push_back(&m);
+  const std::vector<std::string> ids = uniqueMarkerIds(markers);
+  OrderedJson points = OrderedJson::array();
+  std::size_t lastNumber = markers.size();  // Slicer numbers new points' labels from here
+  for (std::size_t i = 0; i < markers.size(); ++i) {
+    points.push_back(controlPoint(*markers[i], ids[i]));
+    if (ids[i].size() < 10 && ids[i].find_first_not_of("0123456789") == std::string::npos)
+      lastNumber = std::max(lastNumber, std::size_t(std::stoul(ids[i])));
+  }
   OrderedJson mk;
   mk["type"] = "Fiducial";
-  mk["name"] = markupName(kind);
+  mk["name"] = markupName(set, kind, severalKinds);
   mk["coordinateSystem"] = "LPS";
   mk["coordinateUnits"] = "mm";
   mk["locked"] = false;
   mk["fixedNumberOfControlPoints"] = false;
   mk["labelFormat"] = "%N-%d";
-  mk["lastUsedControlPointNumber"] = points.size();
+  mk["lastUsedControlPointNumber"] = lastNumber;
   mk["controlPoints"] = std::move(points);
   mk["measurements"] = OrderedJson::array();
   mk["display"] = display(kind);
@@ -338,9 +387,11 @@ std::string formatSlicerMarkups(const MarkerSet& set) {
   OrderedJson doc;
   doc["@schema"] = kSchema;
   doc["markups"] = OrderedJson::array();
-  for (MarkerKind k : {MarkerKind::Landmark, MarkerKind::IcpMarker, MarkerKind::Attachment})
-    if (set.count(k) > 0) doc["markups"].push_back(markup(set, k));
-  if (doc["markups"].empty()) doc["markups"].push_back(markup(set, MarkerKind::Landmark));
+  const MarkerKind kinds[] = {MarkerKind::Landmark, MarkerKind::IcpMarker, MarkerKind::Attachment};
+  const bool severalKinds = std::count_if(std::begin(kinds), std::end(kinds), [&](MarkerKind k) { return set.count(k) > 0; }) > 1;
+  for (MarkerKind k : kinds)
+    if (set.count(k) > 0) doc["markups"].push_back(markup(set, k, severalKinds));
+  if (doc["markups"].empty()) doc["markups"].push_back(markup(set, MarkerKind::Landmark, false));
   std::string out;
   layout(doc, 0, out);
   out += "\n";

@@ -11,6 +11,8 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <utility>
 
 namespace vesalius::io {
 namespace {
@@ -29,6 +31,23 @@ void expectAt(const Eigen::Vector3d& p, double l, double pp, double s) {
   EXPECT_NEAR(p.x(), l, 1e-9);
   EXPECT_NEAR(p.y(), pp, 1e-9);
   EXPECT_NEAR(p.z(), s, 1e-9);
+}
+
+// A marker from its first fields, in the order Marker declares them.
+Marker marker(std::string label, MarkerKind kind, MarkerStatus status, Eigen::Vector3d position,
+              std::optional<Eigen::Vector3d> templatePosition, std::string description, bool selected, bool locked,
+              bool visible) {
+  Marker m;
+  m.label = std::move(label);
+  m.kind = kind;
+  m.status = status;
+  m.position = position;
+  m.templatePosition = templatePosition;
+  m.description = std::move(description);
+  m.selected = selected;
+  m.locked = locked;
+  m.visible = visible;
+  return m;
 }
 
 // The scan geometry the .annot sample is read with (testdata/markers/SOURCE.md).
@@ -82,7 +101,7 @@ TEST(SlicerMarkups, V100WithoutPositionStatusIsDefined) {
 
 TEST(SlicerMarkups, WritesSchema103AsSlicerLaysItOut) {
   MarkerSet set;
-  set.markers.push_back({"a", MarkerKind::IcpMarker, MarkerStatus::Defined, {1, -2, 3.5}, {}, "", true, false, true});
+  set.markers.push_back(marker("a", MarkerKind::IcpMarker, MarkerStatus::Defined, {1, -2, 3.5}, {}, "", true, false, true));
   const std::string text = formatSlicerMarkups(set);
   EXPECT_EQ(text.rfind("{\n    \"@schema\": \"https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/"
                        "Markups/Resources/Schema/markups-schema-v1.0.3.json#\",\n    \"markups\": [\n        {\n"
@@ -169,7 +188,7 @@ TEST(ItkSnapAnnot, NeedsTheScanGeometry) {
 
 MarkerSet sampleSet() {
   MarkerSet set;
-  set.markers.push_back({"apex, \"left\"",
+  set.markers.push_back(marker("apex, \"left\"",
                          MarkerKind::Landmark,
                          MarkerStatus::Defined,
                          {1.0 / 3.0, -2e-7, 1234.5678901234},
@@ -177,8 +196,8 @@ MarkerSet sampleSet() {
                          "first, with comma",
                          true,
                          false,
-                         true});
-  set.markers.push_back({"icp-1",
+                         true));
+  set.markers.push_back(marker("icp-1",
                          MarkerKind::IcpMarker,
                          MarkerStatus::Defined,
                          {-10.25, 20.5, -30.125},
@@ -186,10 +205,10 @@ MarkerSet sampleSet() {
                          "",
                          false,
                          true,
-                         false});
+                         false));
   set.markers.push_back(
-      {"unplaced", MarkerKind::Landmark, MarkerStatus::Undefined, {0, 0, 0}, std::nullopt, "", true, false, true});
-  set.markers.push_back({"attach",
+      marker("unplaced", MarkerKind::Landmark, MarkerStatus::Undefined, {0, 0, 0}, std::nullopt, "", true, false, true));
+  set.markers.push_back(marker("attach",
                          MarkerKind::Attachment,
                          MarkerStatus::Preview,
                          {7.0, 8.0, 9.0},
@@ -197,7 +216,7 @@ MarkerSet sampleSet() {
                          "",
                          true,
                          false,
-                         true});
+                         true));
   return set;
 }
 
@@ -254,7 +273,9 @@ TEST(RoundTrip, CsvKeepsLabelsKindsStatuses) {
   const MarkerSet in = sampleSet();
   const std::string path = outputPath("round.csv");
   writeMarkers(path, in);
-  EXPECT_EQ(readTextFile(path).rfind("label,l,p,s,kind,status\n", 0), 0u);
+  EXPECT_EQ(readTextFile(path).rfind(
+                "label,l,p,s,defined,selected,visible,locked,description,kind,status,id,associatedNodeID,color,tags\n", 0),
+            0u);
   const MarkerSet out = readMarkers(path);
   ASSERT_EQ(out.markers.size(), in.markers.size());
   for (std::size_t i = 0; i < in.markers.size(); ++i) {
@@ -318,11 +339,12 @@ TEST(MarkerIo, BadFilesAreOneLineBadInput) {
   expectBadInput(kBad + "markers_schema_v2.mrk.json", "unsupported \"@schema\"");
   expectBadInput(kBad + "markers_curve.mrk.json", "markup 1: markup type 'Curve'");
   expectBadInput(kBad + "markers_short_position.mrk.json", "control point 1: position must be an array of 3");
-  expectBadInput(kBad + "markers_bad_status.mrk.json", "unknown positionStatus 'maybe'");
+  expectBadInput(kBad + "markers_bad_status.mrk.json", "unknown positionStatus 'maybe' (defined, undefined, preview or missing)");
   expectBadInput(kBad + "markers_truncated.mrk.json", "invalid JSON");
   expectBadInput(kBad + "markers_ijk.fcsv", "line 2: IJK");
   expectBadInput(kBad + "markers_bad_number.fcsv", "line 4: bad y 'abc'");
-  expectBadInput(kBad + "markers_no_version.fcsv", "line 1: no '# Markups fiducial file version'");
+  expectBadInput(kBad + "markers_slicer3_long_row.fcsv", "line 3: a Slicer 3 row (no version line) is label,x,y,z");
+  expectBadInput(kBad + "markers_unclosed_quote.fcsv", "line 4: field 12 opens a quote that is never closed");
   expectBadInput(kBad + "markers_xyz_header.csv", "line 1: the header needs columns l,p,s");
   expectBadInput(kBad + "markers_bad_kind.csv", "line 3: unknown kind 'bone'");
   expectBadInput(kBad + "markers_short_row.csv", "line 2: expected at least 4 fields");
