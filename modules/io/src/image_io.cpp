@@ -131,6 +131,21 @@ itk_seam::RawVolume<float> readDicomFolder(const std::string& folder, const std:
                    seriesListing(series));
 }
 
+// NaN or infinite voxels: no method here has a meaning for them (thresholds, histograms, distances and
+// fits would take them as some number or spread them), and ITK casts them to 0 in integer outputs.
+void checkFiniteValues(const Image& image, const std::string& path) {
+  const auto bad = std::find_if(image.values.begin(), image.values.end(), [](float v) { return !std::isfinite(v); });
+  if (bad == image.values.end()) return;
+  const std::int64_t index = bad - image.values.begin(), nx = image.geometry.size.x(), ny = image.geometry.size.y();
+  const std::int64_t count =
+      std::count_if(bad, image.values.end(), [](float v) { return !std::isfinite(v); });
+  std::ostringstream problem;
+  problem << "voxel (" << index % nx << ", " << index / nx % ny << ", " << index / (nx * ny) << ") holds " << *bad;
+  if (count > 1) problem << " (" << count << " voxels are not finite)";
+  problem << "; scans must hold finite numbers";
+  throw BadInput(path, problem.str());
+}
+
 Image readScanAs(const std::string& path, ScanFormat format, const ScanReadOptions& options) {
   if (format != ScanFormat::DicomFolder && !options.seriesUid.empty())
     throw UsageError(path + ": a series UID selects a series of a DICOM folder, but this is a file");
@@ -142,6 +157,7 @@ Image readScanAs(const std::string& path, ScanFormat format, const ScanReadOptio
   image.geometry.validate(path);
   image.fileType = pixelTypeOf(raw.header.storedType);
   image.values = std::move(raw.values);
+  checkFiniteValues(image, path);
   return image;
 }
 

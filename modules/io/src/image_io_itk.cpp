@@ -17,6 +17,8 @@
 #include <itkNrrdImageIOFactory.h>
 #include <itk_zlib.h>
 
+#include <gdcm-3.0/gdcmTrace.h>  // GDCM as ITK ships it; its own headers include one another by quotes
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -39,16 +41,28 @@ void registerImageFactories() {
     itk::NrrdImageIOFactory::RegisterOneFactory();
     itk::MetaImageIOFactory::RegisterOneFactory();
     itk::GDCMImageIOFactory::RegisterOneFactory();
+    // Messages are ours, one line each: GDCM's traces and ITK's warnings (non-uniform slices, short
+    // files) would print around them, and what they warn of is checked and refused here instead.
+    gdcm::Trace::SetDebug(false);
+    gdcm::Trace::SetWarning(false);
+    gdcm::Trace::SetError(false);
+    itk::Object::GlobalWarningDisplayOff();
   });
 }
 
 std::string itkErrorReason(const itk::ExceptionObject& error) {
   std::string text = error.GetDescription();
   // ITK prefixes descriptions with "ITK ERROR: ClassName(0x55d0c...): "; the address helps nobody.
-  const std::string prefix = "ITK ERROR: ";
-  if (text.compare(0, prefix.size(), prefix) == 0) {
-    const std::size_t close = text.find("): ");
-    text = close == std::string::npos ? text.substr(prefix.size()) : text.substr(close + 3);
+  for (const std::string prefix : {"ITK ERROR: ", "itk::ERROR: "})
+    if (text.compare(0, prefix.size(), prefix) == 0) {
+      const std::size_t close = text.find("): ");
+      text = close == std::string::npos ? text.substr(prefix.size()) : text.substr(close + 3);
+    }
+  // NrrdImageIO says "ReadImageInformation: Error reading <file>:" and the reason on the next line.
+  const std::string reading = "ReadImageInformation: Error reading ";
+  if (text.compare(0, reading.size(), reading) == 0) {
+    const std::size_t colonNewline = text.find(":\n");
+    if (colonNewline != std::string::npos) text = text.substr(colonNewline + 2);
   }
   std::size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string::npos) return "ITK could not process the file";
@@ -89,6 +103,11 @@ struct NiftiLayout {
   int axes = 0;                    // dim[0], at most 3 counted
   std::array<double, 3> pixdim{};  // pixdim[1..axes]: voxel spacing
   std::uint64_t dataEnd = 0;       // vox_offset + voxel bytes; 0 when voxels live in a separate .img
+  std::string nonFinite;           // the first transform field in use that is NaN or infinite, or empty
+  int datatype = 0;                // NIFTI_TYPE_*: 16 float32, 64 float64
+  std::uint64_t voxOffset = 0;
+  std::array<std::int64_t, 3> size{{1, 1, 1}};
+  bool swapped = false;
 };
 
 template <class T>
@@ -120,7 +139,30 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
   const double bitpix = headerField<std::int16_t>(header, bitpixAt, swapped);
   const double offset = double(headerField<OffsetType>(header, offsetAt, swapped));
   if (singleFile && bitpix > 0 && offset >= 0) layout.dataEnd = std::uint64_t(offset + voxels * bitpix / 8);
+  layout.datatype = headerField<std::int16_t>(header, bitpixAt - 2, swapped);
+  layout.voxOffset = offset >= 0 ? std::uint64_t(offset) : 0;
+  for (int n = 0; n < layout.axes; ++n) layout.size[n] = std::int64_t(std::max(dim(n + 1), 1.0));
+  layout.swapped = swapped;
   return layout;
+}
+
+// A qform (quatern_b..d, qoffset_x..z) or sform (srow_x..z) in use that holds NaN or infinity: nifticlib
+// turns such a qform into zeros without a word (a wrong origin), and VNL aborts the process on such an
+// sform. `codeAt` is qform_code; sform_code, the quaternion, the offsets and the rows follow it.
+template <class CodeType, class ValueType>
+std::string nonFiniteTransformField(const unsigned char* header, bool swapped, std::size_t codeAt) {
+  const std::size_t quaternAt = codeAt + 2 * sizeof(CodeType);
+  const bool qform = headerField<CodeType>(header, codeAt, swapped) > 0;
+  const bool sform = headerField<CodeType>(header, codeAt + sizeof(CodeType), swapped) > 0;
+  static const char* const kQformNames[] = {"quatern_b", "quatern_c", "quatern_d", "qoffset_x", "qoffset_y", "qoffset_z"};
+  static const char* const kRows[] = {"srow_x", "srow_y", "srow_z"};
+  for (int n = 0; qform && n < 6; ++n)
+    if (!std::isfinite(double(headerField<ValueType>(header, quaternAt + n * sizeof(ValueType), swapped))))
+      return kQformNames[n];
+  for (int n = 0; sform && n < 12; ++n)
+    if (!std::isfinite(double(headerField<ValueType>(header, quaternAt + (6 + n) * sizeof(ValueType), swapped))))
+      return std::string(kRows[n / 4]) + "[" + std::to_string(n % 4) + "]";
+  return {};
 }
 
 std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int length) {
@@ -131,12 +173,18 @@ std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int len
     swapped = true;
     size = headerField<std::int32_t>(header, 0, true);
   }
-  if (size == 348)
-    return niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108,
-                                                   std::memcmp(header + 344, "n+1", 4) == 0);
-  if (size == 540 && length >= 540)
-    return niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168,
-                                                           std::memcmp(header + 4, "n+2", 4) == 0);
+  if (size == 348) {
+    NiftiLayout layout = niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108,
+                                                                 std::memcmp(header + 344, "n+1", 4) == 0);
+    layout.nonFinite = nonFiniteTransformField<std::int16_t, float>(header, swapped, 252);
+    return layout;
+  }
+  if (size == 540 && length >= 540) {
+    NiftiLayout layout = niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168,
+                                                                         std::memcmp(header + 4, "n+2", 4) == 0);
+    layout.nonFinite = nonFiniteTransformField<std::int32_t, double>(header, swapped, 344);
+    return layout;
+  }
   return std::nullopt;
 }
 
@@ -164,6 +212,35 @@ std::uint64_t remainingBytes(gzFile file, const std::string& path) {
   }
 }
 
+// ITK's NIfTI reader turns NaN voxels into 0 without a word, so float voxels are looked at here, in the
+// file (see checkFiniteValues in image_io.cpp for the other formats).
+template <class T>
+void checkNiftiFloats(gzFile file, const NiftiLayout& layout, const std::string& path) {
+  if (gzrewind(file) != 0 || gzseek(file, z_off_t(layout.voxOffset), SEEK_SET) < 0) return;
+  const std::int64_t count = layout.size[0] * layout.size[1] * layout.size[2];
+  std::vector<T> buffer(1 << 16);
+  for (std::int64_t done = 0; done < count;) {
+    const std::int64_t want = std::min<std::int64_t>(std::int64_t(buffer.size()), count - done);
+    const int bytes = gzread(file, buffer.data(), unsigned(want * std::int64_t(sizeof(T))));
+    if (bytes < int(want * std::int64_t(sizeof(T)))) return;  // the count above reports short files
+    for (std::int64_t n = 0; n < want; ++n) {
+      T value = buffer[std::size_t(n)];
+      if (layout.swapped) {
+        unsigned char raw[sizeof(T)];
+        std::memcpy(raw, &value, sizeof(T));
+        std::reverse(raw, raw + sizeof(T));
+        std::memcpy(&value, raw, sizeof(T));
+      }
+      if (std::isfinite(value)) continue;
+      const std::int64_t index = done + n, nx = layout.size[0], ny = layout.size[1];
+      throw BadInput(path, "voxel (" + std::to_string(index % nx) + ", " + std::to_string(index / nx % ny) + ", " +
+                               std::to_string(index / (nx * ny)) + ") holds " + shortNumber(double(value)) +
+                               "; scans must hold finite numbers");
+    }
+    done += want;
+  }
+}
+
 // Throws BadInput for a non-positive spacing and, if `wholeFile`, for a file shorter than its header says.
 void checkNiftiFile(const std::string& path, bool wholeFile) {
   GzFile file(gzopen(path.c_str(), "rb"), &gzclose);
@@ -173,6 +250,8 @@ void checkNiftiFile(const std::string& path, bool wholeFile) {
   const int length = gzread(file.get(), header, sizeof header);
   const std::optional<NiftiLayout> layout = parseNiftiHeader(header, length);
   if (!layout) return;
+  if (!layout->nonFinite.empty())
+    throw BadInput(path, "the orientation field " + layout->nonFinite + " is not a finite number");
   for (int axis = 0; axis < layout->axes; ++axis)
     if (!(std::isfinite(layout->pixdim[axis]) && layout->pixdim[axis] > 0))
       throw BadInput(path, "voxel spacing pixdim[" + std::to_string(axis + 1) + "] is " +
@@ -185,6 +264,8 @@ void checkNiftiFile(const std::string& path, bool wholeFile) {
     throw BadInput(path, "file is truncated: " + std::to_string(size) + " of " +
                              std::to_string(layout->dataEnd) +
                              (compressed ? " bytes after decompression" : " bytes"));
+  if (layout->datatype == 16) checkNiftiFloats<float>(file.get(), *layout, path);
+  if (layout->datatype == 64) checkNiftiFloats<double>(file.get(), *layout, path);
 }
 
 bool isNifti(const std::string& path) {
@@ -192,10 +273,123 @@ bool isNifti(const std::string& path) {
   return extension == ".nii" || extension == ".nii.gz";
 }
 
+bool isNrrd(const std::string& path) {
+  const std::string extension = fileExtension(path);
+  return extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd";
+}
+
+bool isMetaImage(const std::string& path) {
+  const std::string extension = fileExtension(path);
+  return extension == ".mha" || extension == ".mhd";
+}
+
+std::string trimmed(std::string s) {
+  s.erase(0, s.find_first_not_of(" \t\r"));
+  s.erase(s.find_last_not_of(" \t\r") + 1);
+  return s;
+}
+
+// The numbers of a header field, NaN for a word that is not one ("nan", "inf" and the like included).
+std::vector<double> headerNumbers(const std::string& text) {
+  std::vector<double> numbers;
+  std::string word;
+  std::istringstream words(text);
+  while (words >> word) {
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    numbers.push_back(end == word.c_str() || *end != '\0' ? std::numeric_limits<double>::quiet_NaN() : value);
+  }
+  return numbers;
+}
+
+// Geometry fields ITK reads without complaint although they are wrong: a NaN spacing becomes 1 mm in
+// NRRD, a negative MetaImage spacing becomes a flipped axis, a NaN origin or direction is carried on.
+void checkGeometryNumbers(const std::string& path, const std::string& field, const std::vector<double>& numbers,
+                          bool positive) {
+  for (std::size_t n = 0; n < numbers.size(); ++n)
+    if (!std::isfinite(numbers[n]) || (positive && numbers[n] <= 0))
+      throw BadInput(path, field + " holds " + shortNumber(numbers[n]) +
+                               (positive ? " (each must be a positive number of mm)" : " (must be a finite number)"));
+}
+
+// `key: value` lines of a NRRD header up to its blank line (`#` lines are comments).
+void checkNrrdHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // ITK reports unreadable files
+  std::string line;
+  int dimension = 0, lines = 0;
+  std::map<std::string, std::string> fields;
+  while (std::getline(in, line) && ++lines < 4096) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) break;
+    if (line[0] == '#') continue;
+    const std::size_t colon = line.find(": ");
+    if (colon == std::string::npos || line.compare(colon, 3, ":=") == 0) continue;
+    fields[trimmed(line.substr(0, colon))] = trimmed(line.substr(colon + 2));
+  }
+  if (fields.count("dimension")) dimension = std::atoi(fields["dimension"].c_str());
+  // A 4-D file's non-spatial axis (vector components) has the spacing "nan" by the NRRD standard.
+  if (fields.count("spacings") && dimension <= 3)
+    checkGeometryNumbers(path, "spacings", headerNumbers(fields["spacings"]), true);
+  if (fields.count("space origin")) {
+    std::string origin = fields["space origin"];
+    std::replace_if(origin.begin(), origin.end(), [](char c) { return c == '(' || c == ')' || c == ','; }, ' ');
+    checkGeometryNumbers(path, "space origin", headerNumbers(origin), false);
+  }
+  if (fields.count("space directions")) {
+    std::string directions = fields["space directions"];
+    std::size_t word = 0;
+    while ((word = directions.find("none")) != std::string::npos) directions.erase(word, 4);
+    std::replace_if(directions.begin(), directions.end(), [](char c) { return c == '(' || c == ')' || c == ','; }, ' ');
+    checkGeometryNumbers(path, "space directions", headerNumbers(directions), false);
+  }
+}
+
+// The `Key = value` fields of a MetaImage header up to ElementDataFile, its last field.
+std::map<std::string, std::string> metaImageFields(const std::string& path, std::uint64_t& headerBytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BadInput(path, "cannot open");
+  std::map<std::string, std::string> fields;
+  std::string line;
+  headerBytes = 0;
+  while (std::getline(in, line) && headerBytes < (1 << 20)) {
+    headerBytes += line.size() + 1;
+    const std::size_t equals = line.find('=');
+    if (equals == std::string::npos) continue;
+    const std::string key = trimmed(line.substr(0, equals));
+    fields[key] = trimmed(line.substr(equals + 1));
+    if (key == "ElementDataFile") break;  // data follows
+  }
+  return fields;
+}
+
+void checkMetaImageHeader(const std::string& path) {
+  std::uint64_t headerBytes = 0;
+  const std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
+  for (const char* key : {"ElementSpacing", "ElementSize"})
+    if (fields.count(key)) checkGeometryNumbers(path, key, headerNumbers(fields.at(key)), true);
+  for (const char* key : {"Offset", "Origin", "Position", "TransformMatrix", "Rotation", "Orientation"})
+    if (fields.count(key)) checkGeometryNumbers(path, key, headerNumbers(fields.at(key)), false);
+}
+
+void checkMetaImageBytes(const std::string& path);
+
 // An ImageIO that has read the header of `path`; throws BadInput if no ITK reader accepts the file or our
 // own NIfTI checks fail (`wholeFile`: also check that all voxel bytes are there).
 itk::ImageIOBase::Pointer openImageIO(const std::string& path, bool wholeFile) {
   if (isNifti(path)) checkNiftiFile(path, wholeFile);
+  if (isNrrd(path)) checkNrrdHeader(path);
+  if (isMetaImage(path)) {
+    checkMetaImageHeader(path);
+    try {
+      if (wholeFile) checkMetaImageBytes(path);
+    } catch (const BadInput&) {
+      throw;
+    } catch (const std::exception& error) {  // a size that is not a number, a data file that is missing
+      throw BadInput(path, std::string("MetaImage header or data file unreadable (") + error.what() + ")");
+    }
+  }
+  if (!isNifti(path) && !isNrrd(path) && !isMetaImage(path)) checkDicomFileStructure(path);
   registerImageFactories();
   itk::ImageIOBase::Pointer io =
       itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::IOFileModeEnum::ReadMode);
@@ -268,24 +462,8 @@ T toStored(float value) {
 // Throws BadInput if a MetaImage file (.mha, or .mhd with its data file) holds fewer data bytes than its
 // header says: ITK reads such a file with a warning on stderr and zeros for the missing voxels.
 void checkMetaImageBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BadInput(path, "cannot open");
-  std::map<std::string, std::string> fields;
-  std::string line;
   std::uint64_t headerBytes = 0;
-  while (std::getline(in, line) && headerBytes < (1 << 20)) {
-    headerBytes += line.size() + 1;
-    const std::size_t equals = line.find('=');
-    if (equals == std::string::npos) continue;
-    const auto trimmed = [](std::string s) {
-      s.erase(0, s.find_first_not_of(" \t\r"));
-      s.erase(s.find_last_not_of(" \t\r") + 1);
-      return s;
-    };
-    const std::string key = trimmed(line.substr(0, equals));
-    fields[key] = trimmed(line.substr(equals + 1));
-    if (key == "ElementDataFile") break;  // the header's last field; data follows
-  }
+  std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   if (!fields.count("ElementDataFile")) throw BadInput(path, "MetaImage header without ElementDataFile");
   std::uint64_t expected = 0;
   if (fields["CompressedData"] == "True") {
@@ -304,6 +482,7 @@ void checkMetaImageBytes(const std::string& path) {
     for (std::uint64_t n; sizes >> n;) expected *= n;
   }
   const std::string& dataFile = fields["ElementDataFile"];
+  if (dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos) return;  // one file per slice
   std::uint64_t actual = 0;
   if (dataFile != "LOCAL")
     actual = std::filesystem::file_size(std::filesystem::path(path).parent_path() / dataFile);
@@ -427,8 +606,52 @@ void writeImageFile(const std::string& path, const RawHeader& header, const std:
   }
 }
 
+namespace {
+
+// GDCM sorts a series by position along the slice normal; ITK then spaces the slices evenly by their
+// mean distance. So two files at one position (a duplicated slice) or a gap (a missing slice) would give
+// a volume whose geometry is wrong without a word. Refused here, naming the files.
+void checkSlicePositions(const std::string& folder, const std::vector<std::string>& files) {
+  if (files.size() < 2) return;
+  std::vector<double> along;
+  for (const std::string& file : files) {
+    auto io = itk::GDCMImageIO::New();
+    io->SetFileName(file);
+    try {
+      io->ReadImageInformation();
+    } catch (const itk::ExceptionObject& error) {
+      throw BadInput(file, itkErrorReason(error));
+    }
+    const std::vector<double> normal = io->GetDirection(2);
+    double d = 0;
+    for (unsigned axis = 0; axis < 3 && axis < normal.size(); ++axis) d += normal[axis] * io->GetOrigin(axis);
+    along.push_back(d);
+  }
+  std::vector<std::size_t> order(files.size());
+  for (std::size_t n = 0; n < order.size(); ++n) order[n] = n;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return along[a] < along[b]; });
+  const auto name = [&](std::size_t n) { return std::filesystem::path(files[order[n]]).filename().string(); };
+  for (std::size_t n = 1; n < order.size(); ++n)
+    if (along[order[n]] - along[order[n - 1]] < 1e-3)
+      throw BadInput(folder, "slices " + name(n - 1) + " and " + name(n) + " lie at the same position (" +
+                                 shortNumber(along[order[n]]) + " mm along the slice normal): a slice is duplicated");
+  const double mean = (along[order.back()] - along[order.front()]) / double(files.size() - 1);
+  for (std::size_t n = 1; n < order.size(); ++n) {
+    const double gap = along[order[n]] - along[order[n - 1]];
+    // Up to a tenth of a gap: rounding in the stored positions, and scanners that vary it slightly.
+    if (std::abs(gap - mean) > 0.1 * mean)
+      throw BadInput(folder, "slices " + name(n - 1) + " and " + name(n) + " are " + shortNumber(gap) +
+                                 " mm apart, the series " + shortNumber(mean) +
+                                 " mm on average: a slice is missing or the spacing varies");
+  }
+}
+
+}  // namespace
+
 RawVolume<float> readDicomSlices(const std::string& folder, const std::vector<std::string>& files) {
   registerImageFactories();
+  for (const std::string& file : files) checkDicomFileStructure(file);
+  checkSlicePositions(folder, files);
   using ImageType = itk::Image<float, 3>;
   auto io = itk::GDCMImageIO::New();
   auto reader = itk::ImageSeriesReader<ImageType>::New();

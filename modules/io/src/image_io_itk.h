@@ -48,6 +48,11 @@ std::string itkErrorReason(const itk::ExceptionObject& error);
 // True if GDCM recognises `path` as a DICOM file (for files without a known extension).
 bool isDicomFile(const std::string& path);
 
+// Walks the data elements of a DICOM file (any transfer syntax but deflated) and throws BadInput naming
+// `path` if an element, item or fragment is longer than what is left of the file: GDCM aborts the
+// process on some such files and reads others with missing pixels (dicom_series.cpp).
+void checkDicomFileStructure(const std::string& path);
+
 // Header of an image file (NIfTI, NRRD, MetaImage, single DICOM file) without reading its voxels.
 // Throws BadInput naming `path` if ITK cannot read it or it has more than three non-trivial dimensions.
 RawHeader readImageHeader(const std::string& path);

@@ -42,6 +42,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -185,11 +186,15 @@ void writeChecked(Writer* writer, const std::string& path) {
   checkNotEmpty(path);
 }
 
-// vtkPLYReader frees memory it never allocated when a file ends early, so the structure of a PLY file
-// is walked first: the header's elements and properties must be matched by the data that follows.
+// vtkPLYReader frees memory it never allocated when a file ends early, and reads far outside its vertex
+// array for a face index beyond it (a segfault), so the structure of a PLY file is walked first: the
+// header's elements and properties must be matched by the data that follows, and every face's vertex
+// index must name a vertex.
 struct PlyProperty {
   int valueBytes = 0;
   int countBytes = 0;  // lists only: size of the count that precedes the values
+  bool isFloat = false, isSigned = false;
+  bool vertexIndices = false;  // the face list whose values index the vertex element
 };
 
 struct PlyElement {
@@ -197,6 +202,14 @@ struct PlyElement {
   long long count = 0;
   std::vector<PlyProperty> properties;
 };
+
+bool plyTypeIsFloat(const std::string& type) {
+  return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
+bool plyTypeIsSigned(const std::string& type) {
+  return type == "char" || type == "int8" || type == "short" || type == "int16" || type == "int" || type == "int32";
+}
 
 int plyTypeBytes(const std::string& type) {
   static const std::map<std::string, int> kBytes = {
@@ -227,7 +240,13 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
     if (keyword != "property") continue;
     if (elements.empty()) throw BadInput(path, "PLY property before any element");
     const bool list = a == "list";
-    PlyProperty property{plyTypeBytes(list ? c : a), list ? plyTypeBytes(b) : 0};
+    const std::string& valueType = list ? c : a;
+    std::string propertyName;
+    words >> propertyName;
+    PlyProperty property{plyTypeBytes(valueType), list ? plyTypeBytes(b) : 0, plyTypeIsFloat(valueType),
+                         plyTypeIsSigned(valueType),
+                         list && elements.back().name == "face" &&
+                             (propertyName == "vertex_indices" || propertyName == "vertex_index")};
     if (!property.valueBytes || (list && !property.countBytes))
       throw BadInput(path, "PLY property with an unknown type: " + line);
     elements.back().properties.push_back(property);
@@ -242,9 +261,50 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
                            std::to_string(e.count));
 }
 
+long long plyVertexCount(const std::vector<PlyElement>& elements) {
+  for (const PlyElement& e : elements)
+    if (e.name == "vertex") return e.count;
+  return 0;
+}
+
+void checkPlyVertexIndex(double index, long long vertices, const std::string& path, long long face) {
+  if (!(index >= 0 && index < double(vertices) && index == std::floor(index))) {
+    std::ostringstream value;
+    value << index;
+    throw BadInput(path, "PLY face " + std::to_string(face + 1) + " refers to vertex " + value.str() + " of " +
+                             std::to_string(vertices));
+  }
+}
+
+// One binary value of `p`'s type at `at`.
+double plyBinaryValue(const std::string& bytes, std::size_t at, const PlyProperty& p, bool bigEndian) {
+  unsigned char raw[8];
+  for (int k = 0; k < p.valueBytes; ++k)
+    raw[k] = static_cast<unsigned char>(bytes[at + (bigEndian ? p.valueBytes - 1 - k : k)]);
+  std::uint64_t bits = 0;
+  for (int k = p.valueBytes - 1; k >= 0; --k) bits = bits << 8 | raw[k];
+  if (p.isFloat) {
+    if (p.valueBytes == 4) {
+      float f;
+      const std::uint32_t b32 = std::uint32_t(bits);
+      std::memcpy(&f, &b32, 4);
+      return f;
+    }
+    double d;
+    std::memcpy(&d, &bits, 8);
+    return d;
+  }
+  if (p.isSigned) {
+    const int shift = 64 - 8 * p.valueBytes;
+    return double(static_cast<std::int64_t>(bits << shift) >> shift);
+  }
+  return double(bits);
+}
+
 // Walks binary data, reading list counts; throws if the data ends before the header says it should.
 void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
                    const std::vector<PlyElement>& elements, const std::string& path) {
+  const long long vertices = plyVertexCount(elements);
   for (const PlyElement& e : elements)
     for (long long i = 0; i < e.count; ++i)
       for (const PlyProperty& p : e.properties) {
@@ -257,6 +317,9 @@ void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
           offset += p.countBytes;
         }
         if (values * p.valueBytes > bytes.size() - offset) plyEndsEarly(path, e, i);
+        if (p.vertexIndices)
+          for (std::size_t v = 0; v < values; ++v)
+            checkPlyVertexIndex(plyBinaryValue(bytes, offset + v * p.valueBytes, p, bigEndian), vertices, path, i);
         offset += values * p.valueBytes;
       }
 }
@@ -264,6 +327,7 @@ void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
 void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vector<PlyElement>& elements,
                   const std::string& path) {
   const std::vector<std::string_view> tokens = splitWhitespace(std::string_view(bytes).substr(offset));
+  const long long vertices = plyVertexCount(elements);
   std::size_t next = 0;
   for (const PlyElement& e : elements)
     for (long long i = 0; i < e.count; ++i)
@@ -271,6 +335,10 @@ void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vecto
         if (next >= tokens.size()) plyEndsEarly(path, e, i);
         const long long values = p.countBytes ? std::strtoll(std::string(tokens[next++]).c_str(), nullptr, 10) : 1;
         if (values < 0 || static_cast<std::size_t>(values) > tokens.size() - next) plyEndsEarly(path, e, i);
+        if (p.vertexIndices)
+          for (long long v = 0; v < values; ++v)
+            checkPlyVertexIndex(std::strtod(std::string(tokens[next + std::size_t(v)]).c_str(), nullptr), vertices,
+                                path, i);
         next += static_cast<std::size_t>(values);
       }
 }
