@@ -10,7 +10,10 @@
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/skeleton_io.h"
+#include "vesalius/io/slicer_segmentation.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -119,12 +122,38 @@ void printLabelTable(const InfoOptions& o) {
   for (const LabelEntry& e : table.entries) std::cout << "  " << std::setw(5) << e.id << "  " << e.name << '\n';
 }
 
+void printSegmentation(const InfoOptions& o) {
+  const io::SlicerSegmentation seg = io::readSlicerSegmentation(o.file);
+  const GridGeometry& g = seg.layers.front().geometry;
+  std::cout << o.file << ": 3D Slicer segmentation, " << seg.segments.size() << " segments in " << seg.layers.size()
+            << (seg.layers.size() == 1 ? " layer\n" : " layers\n")
+            << "  size         " << g.size.x() << " x " << g.size.y() << " x " << g.size.z() << " voxels\n"
+            << "  spacing      " << g.spacing.x() << " x " << g.spacing.y() << " x " << g.spacing.z() << " mm\n"
+            << "  origin       " << vec(g.origin) << " mm, LPS\n"
+            << "  layer  value     voxels  colour       name\n";
+  for (const io::SlicerSegment& s : seg.segments) {
+    const std::vector<Label>& values = seg.layers[std::size_t(s.layer)].values;
+    const auto voxels = std::count(values.begin(), values.end(), s.labelValue);
+    char line[96];
+    std::snprintf(line, sizeof line, "  %5d  %5u  %9lld  %3u %3u %3u  ", s.layer, unsigned(s.labelValue),
+                  (long long)voxels, unsigned(s.color[0]), unsigned(s.color[1]), unsigned(s.color[2]));
+    std::cout << line << s.name << '\n';
+  }
+  for (const io::SegmentOverlap& overlap : io::segmentOverlaps(seg))
+    std::cout << "  overlap      '" << seg.segments[overlap.first].name << "' and '"
+              << seg.segments[overlap.second].name << "' share " << overlap.voxels << " voxels\n";
+}
+
 void runInfo(const InfoOptions& o) {
   if (!fs::exists(o.file)) throw BadInput(o.file, "no such file or folder");
   const std::string ext = fileExtension(o.file);
-  if (fs::is_directory(o.file) || ext == ".nii" || ext == ".nii.gz" || ext == ".nrrd" || ext == ".nhdr" ||
+  if (ext == ".seg.nrrd")
+    printSegmentation(o);
+  else if (fs::is_directory(o.file) || ext == ".nii" || ext == ".nii.gz" || ext == ".nrrd" || ext == ".nhdr" ||
       ext == ".mha" || ext == ".mhd" || ext == ".dcm")
     printScan(o);
+  else if (io::isLabelTableFile(o.file))  // before markers: a Slicer colour table may be a .csv
+    printLabelTable(o);
   else if (io::isMarkerFile(o.file))
     printMarkers(o);
   else if (auto kind = io::meshFileKind(o.file))
@@ -135,8 +164,6 @@ void runInfo(const InfoOptions& o) {
     printOpenSim(o);
   else if (ext == ".mhskel")
     printMakeHuman(o);
-  else if (ext == ".tsv" || ext == ".ctbl" || ext == ".txt")
-    printLabelTable(o);
   else
     throw BadInput(o.file, "unknown file type '" + ext + "'");
 }

@@ -77,7 +77,9 @@ void addSegmentCommand(CLI::App& app) {
                   "dark bone such as the skull, soft_tissue)")
       ->check(CLI::IsMember({"ct", "mri"}))
       ->capture_default_str();
-  cmd->add_option("--out", o->out, "Label map to write (.nii.gz, .nrrd, .mha); a .tsv label table goes beside it")
+  cmd->add_option("--out", o->out,
+                  "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for Vesalius (.tsv), "
+                  "3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer segmentation (.seg.nrrd)")
       ->required();
   cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");
   cmd->add_option("--skin-thickness", o->skinThickness, "Skin shell thickness in mm")->capture_default_str();
