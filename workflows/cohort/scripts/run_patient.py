@@ -29,7 +29,8 @@ def error_line(log_path: str) -> str:
     """The last line vesalius wrote as its error, else the log's last line."""
     try:
         with open(log_path, errors="replace") as f:
-            lines = [line.strip() for line in f if line.strip() and not line.startswith("$ ")]
+            lines = [line.strip() for line in f if line.strip() and not line.startswith("$ ") and
+                     not line.startswith("Run with --help")]  # CLI11's hint after a usage error
     except OSError:
         return ""
     for line in reversed(lines):
