@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace vesalius::cli {
 
@@ -113,7 +114,19 @@ Eigen::VectorXd boneFatAtSkin(const ReferenceAnatomy& reference, const std::stri
     throw UsageError("fat amounts: the voxel size must be > 0, the maximum thickness and default amount >= 0");
   const BoneHandles h = boneHandles(reference);
   if (h.names.empty()) throw BadInput(referencePath, "the reference has no bones for the fat editor");
+  // No body holds a metre of fat; beyond that an amount is a typing error (or, as 1e308, an infinity).
+  constexpr double kMostThicknessMm = 1000;
+  if (maxThicknessMm * defaultAmount > kMostThicknessMm)
+    throw UsageError("fat amounts: --default-amount times --max-thickness is at most " +
+                     std::to_string(int(kMostThicknessMm)) + " mm of fat");
   const Eigen::VectorXd amounts = readAmounts(amountsPath, h, reference, defaultAmount);
+  for (Eigen::Index b = 0; b < amounts.size(); ++b)
+    if (amounts[b] * maxThicknessMm > kMostThicknessMm) {
+      std::ostringstream text;
+      text << "the amount of '" << h.names[std::size_t(b)] << "' is " << amounts[b] << ": times --max-thickness "
+           << maxThicknessMm << " mm that is more than " << kMostThicknessMm << " mm of fat";
+      throw BadInput(amountsPath, text.str());
+    }
   const auto start = std::chrono::steady_clock::now();
   Grid<std::int32_t> labels = boneLabels(reference, h, voxelSizeMm);
   // Handles with no voxel (a bone outside the skin) have no weight; the others are numbered anew.

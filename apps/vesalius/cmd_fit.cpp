@@ -43,6 +43,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <tuple>
 #include <utility>
 
@@ -138,6 +139,31 @@ std::optional<TriMesh> closedTemplate(const FitCommandOptions& o, const TriMesh&
   return closed;
 }
 
+// A closed surface that encloses (next to) no volume has no inside for TetGen to fill, and TetGen
+// searches for one for minutes; so it is refused first. A millionth of the cube of the bounding box's
+// diagonal: a sphere encloses a tenth of it, a plate a hundredth of its width thick still 3e-5.
+void refuseFlat(const TriMesh& surface, const std::string& path) {
+  if (surface.V.rows() == 0) return;  // the tetrahedralization reports an empty mesh
+  const double diagonal = (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm();
+  // Thickness across its flattest direction: the root of the smallest variance of the vertices.
+  const MatrixX3d centred = surface.V.rowwise() - surface.V.colwise().mean();
+  const Eigen::Matrix3d covariance = centred.transpose() * centred / double(surface.V.rows());
+  const double thickness = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()(0)));
+  if (thickness <= 1e-6 * diagonal) {
+    std::ostringstream text;
+    text << "the template's vertices lie in one plane (" << thickness << " mm thick, " << diagonal
+         << " mm across): a flat surface has no inside to fill with tets";
+    throw BadInput(path, text.str());
+  }
+  const double volume = std::abs(enclosedVolume(surface.V, surface.F));
+  if (volume <= 1e-6 * diagonal * diagonal * diagonal) {
+    std::ostringstream text;
+    text << "the template encloses " << volume << " mm^3 inside a bounding box " << diagonal
+         << " mm across: a flat surface has no inside to fill with tets";
+    throw BadInput(path, text.str());
+  }
+}
+
 Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   const std::optional<io::MeshKind> kind = io::meshFileKind(o.templ);
   if (!kind)
@@ -154,7 +180,9 @@ Template readTemplate(const FitCommandOptions& o, io::Report& report) {
   auto timer = report.time("tetrahedralize");
   // The broken original is not kept for --surface-out: its triangles may cross, and the closed surface is
   // what the tets fill (--embed carries the original if wanted).
+  refuseFlat(*t.surface, o.templ);  // before closing: the winding number of a flat surface is noise
   if (std::optional<TriMesh> closed = closedTemplate(o, *t.surface, report)) t.surface = std::move(closed);
+  refuseFlat(*t.surface, o.templ);
   meshing::TetrahedralizeOptions options;
   options.targetTets = o.targetTets;
   // TetGen meshes a coarsened surface (--template-faces, or as the tet target allows); the template's own

@@ -21,6 +21,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 
 namespace vesalius::cli {
 
@@ -232,6 +233,16 @@ Edit morph(const Input& in, io::Report& report) {
 Edit crop(const Input& in, io::Report& report) {
   report.parameter("to_label", in.o.selected);
   report.parameter("margin_mm", in.o.marginMm);
+  // A margin beyond the map's own extent keeps the whole map whatever the labels; larger ones overflow
+  // the voxel arithmetic, so both are refused.
+  const GridGeometry& grid = in.map.labels.geometry;
+  const double extent = (grid.size.cast<double>().array() * grid.spacing.array()).maxCoeff();
+  if (!(in.o.marginMm >= 0 && in.o.marginMm <= extent)) {
+    std::ostringstream text;
+    text << "labels crop: --margin-mm must be from 0 to " << extent << " mm (the largest extent of "
+         << in.o.labels << "), not " << in.o.marginMm;
+    throw UsageError(text.str());
+  }
   const std::vector<Label> ids = in.labels(in.o.selected);
   if (ids.empty() && in.presentExcept({}).empty())
     throw BadInput(in.o.labels, "every voxel is background; nothing to crop to");

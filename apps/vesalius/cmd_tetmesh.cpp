@@ -13,6 +13,7 @@
 #include "vesalius/segmentation/label_resample.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -103,6 +104,18 @@ void runTetmesh(const TetmeshOptions& o) {
   if (o.surfaces.empty() == o.labels.empty()) throw UsageError("tetmesh: give --surface or --labels (not both)");
   if (o.body > 0 && o.labels.empty()) throw UsageError("tetmesh: --body needs --labels");
   if (o.shared && o.labels.empty()) throw UsageError("tetmesh: --shared needs --labels");
+  // Said in the options' own names before any file is read; the library checks the same (and, for a
+  // volume bound, the tets it needs for what the surfaces enclose against --tet-budget).
+  std::ostringstream value;
+  if (o.tet.radiusEdge != 0 && !(o.tet.radiusEdge >= meshing::kMinRadiusEdge)) {
+    value << o.tet.radiusEdge;
+    throw UsageError("tetmesh: --quality must be 0 (no refinement) or at least " + std::to_string(meshing::kMinRadiusEdge).substr(0, 3) +
+                     " (below that TetGen may refine for ever), not " + value.str());
+  }
+  if (!(o.tet.maxVolume >= 0) || !std::isfinite(o.tet.maxVolume)) {
+    value << o.tet.maxVolume;
+    throw UsageError("tetmesh: --max-volume must be 0 (no bound) or a positive number of mm^3, not " + value.str());
+  }
   io::Report report("tetmesh");
   for (const std::string& s : o.surfaces) report.input("surface", s);
   if (!o.labels.empty()) report.input("labels", o.labels);

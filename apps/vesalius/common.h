@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
+#include "vesalius/core/error.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
 #include "vesalius/io/report.h"
@@ -27,6 +28,10 @@ struct CommonOptions {
 // Adds --progress, --force and --report to a subcommand; an existing --report without --force is refused
 // when the options are parsed.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+// The one line `vesalius` prints for `error`: a BadInput raised by library code that knows no file (a
+// scan that is constant, points that are collinear) is prefixed with the command's input files.
+std::string errorMessage(const Error& error);
 
 // A label chosen with --label: an id, or a name from the label table of the map read from `labelsPath`
 // (LabelTable::resolve: names case-insensitive). Throws UsageError naming `labelsPath` if it matches

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // prints help, version, or the parse error
     return code == 0 ? vesalius::kExitOk : vesalius::kExitUsage;
   } catch (const vesalius::Error& e) {
-    std::cerr << "vesalius: " << e.what() << '\n';
+    std::cerr << "vesalius: " << vesalius::cli::errorMessage(e) << '\n';
     return e.exitCode();
   } catch (const std::exception& e) {
     std::cerr << "vesalius: unexpected error: " << e.what() << '\n';

@@ -15,6 +15,7 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <system_error>
 #include <vector>
 
@@ -211,9 +212,79 @@ void syncFile(const std::string& path, const std::string& nameForErrors) {
   if (synced != 0) throw BadInput(nameForErrors, "cannot write: " + errnoText(error));
 }
 
+namespace {
+
+struct ProtectedInput {
+  dev_t device;
+  ino_t inode;
+  bool folder;
+  std::string path;   // as given, for messages
+  fs::path canonical;
+};
+
+std::mutex& protectedMutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::vector<ProtectedInput>& protectedInputs() {
+  static std::vector<ProtectedInput> inputs;
+  return inputs;
+}
+
+[[noreturn]] void refuseInput(const std::string& path, const std::string& why) {
+  throw UsageError(path + ": " + why + "; an output never replaces an input, --force or not");
+}
+
+}  // namespace
+
+void protectInput(const std::string& path) {
+  struct stat info {};
+  if (path.empty() || ::stat(path.c_str(), &info) != 0) return;
+  std::error_code ec;
+  const fs::path canonical = fs::canonical(path, ec);
+  std::lock_guard<std::mutex> lock(protectedMutex());
+  for (const ProtectedInput& p : protectedInputs())
+    if (p.device == info.st_dev && p.inode == info.st_ino) return;
+  protectedInputs().push_back({info.st_dev, info.st_ino, S_ISDIR(info.st_mode), path, ec ? fs::path() : canonical});
+}
+
+void checkNotAnInput(const std::string& path) {
+  struct stat info {};
+  if (path.empty() || ::stat(path.c_str(), &info) != 0) return;  // a new file replaces nothing
+  std::lock_guard<std::mutex> lock(protectedMutex());
+  const std::vector<ProtectedInput>& inputs = protectedInputs();
+  if (inputs.empty()) return;
+  for (const ProtectedInput& p : inputs)
+    if (p.device == info.st_dev && p.inode == info.st_ino)
+      refuseInput(path, p.path == path ? std::string("is an input") : "is the input " + p.path);
+  std::error_code ec;
+  const fs::path canonical = fs::canonical(path, ec);
+  if (ec) return;
+  if (S_ISDIR(info.st_mode)) {
+    // Replacing a folder removes what it holds.
+    for (const ProtectedInput& p : inputs) {
+      const auto mismatch = std::mismatch(canonical.begin(), canonical.end(), p.canonical.begin(), p.canonical.end());
+      if (!p.canonical.empty() && mismatch.first == canonical.end())
+        refuseInput(path, "holds the input " + p.path);
+    }
+    return;
+  }
+  // An existing file inside an input folder is part of that input (a rig's skeleton, a reference's mesh).
+  for (fs::path folder = canonical.parent_path(); !folder.empty(); folder = folder.parent_path()) {
+    struct stat folderInfo {};
+    if (::stat(folder.c_str(), &folderInfo) == 0)
+      for (const ProtectedInput& p : inputs)
+        if (p.folder && p.device == folderInfo.st_dev && p.inode == folderInfo.st_ino)
+          refuseInput(path, "is part of the input folder " + p.path);
+    if (folder == folder.root_path()) break;
+  }
+}
+
 void writeAtomically(const std::string& path, const WriteOptions& options,
                      const std::function<void(const std::string& temporaryPath)>& write) {
   const fs::path target(path);
+  checkNotAnInput(path);
   std::error_code ec;
   if (fs::exists(target, ec)) {
     // Renaming over a folder, device or pipe (say /dev/null) would destroy it, --force or not.

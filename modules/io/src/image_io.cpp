@@ -186,6 +186,7 @@ void writeDetachedImage(const std::string& path, const WriteOptions& options,
     if (entry.path() != stagedHeader) dataFiles.push_back(entry.path());
   for (const fs::path& data : dataFiles) {
     const std::string final = (target.parent_path() / data.filename()).string();
+    checkNotAnInput(final);
     checkNotExisting(final, options);
     syncFile(data.string(), final);
   }

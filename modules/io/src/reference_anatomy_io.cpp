@@ -116,6 +116,7 @@ void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& an
   anatomy.validate(folder);
   fs::path target = fs::path(folder).lexically_normal();
   if (target.filename().empty()) target = target.parent_path();  // "out/" names the folder "out"
+  checkNotAnInput(target.string());
   if (fs::exists(target) && !options.force)
     throw UsageError(folder + " exists; pass --force to replace it");
   if (target.has_parent_path()) fs::create_directories(target.parent_path());

@@ -50,6 +50,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <new>
 #include <numeric>
 #include <sstream>
 #include <type_traits>
@@ -151,14 +152,37 @@ void checkReadable(const std::string& path) {
   if (!in) throw BadInput(path, std::string("cannot open: ") + std::strerror(errno));
 }
 
+// VTK allocates what an XML file's NumberOfPoints, NumberOfCells, ... declare before reading the data, so
+// a few hundred bytes claiming 4e9 points exhaust the memory. Each declared point or cell takes at least a
+// byte of data, and zlib shrinks data at most about 1032-fold, so more than that is refused.
+void checkXmlDeclaredCounts(const std::string& path) {
+  const std::string text = readBinaryFile(path);
+  const double most = 1032.0 * double(text.size()) + 1e6;
+  for (std::size_t at = text.find("NumberOf"); at != std::string::npos; at = text.find("NumberOf", at + 8)) {
+    const std::size_t quote = text.find_first_of("\"'", at);
+    const std::size_t equals = text.find('=', at);
+    if (quote == std::string::npos || equals == std::string::npos || equals > quote) continue;
+    const std::string name = text.substr(at, equals - at);
+    const double count = std::strtod(text.c_str() + quote + 1, nullptr);
+    if (name != "NumberOfComponents" && count > most)
+      throw BadInput(path, name + "=\"" + text.substr(quote + 1, text.find_first_of("\"'", quote + 1) - quote - 1) +
+                               "\" is more than a file of " + std::to_string(text.size()) + " bytes can hold");
+  }
+}
+
 template <class Reader>
 void readChecked(Reader* reader, const std::string& path) {
   checkReadable(path);
+  if constexpr (std::is_base_of_v<vtkXMLReader, Reader>) checkXmlDeclaredCounts(path);
   reader->SetFileName(path.c_str());
-  runChecked(reader, path, [reader] {
-    reader->Update();
-    return true;
-  });
+  try {
+    runChecked(reader, path, [reader] {
+      reader->Update();
+      return true;
+    });
+  } catch (const std::bad_alloc&) {
+    throw BadInput(path, "the sizes it declares do not fit in memory");
+  }
 }
 
 // Every VTK format starts with a header, so an empty file is a failed write that VTK did not report

@@ -37,6 +37,15 @@ struct WriteOptions {
 void writeAtomically(const std::string& path, const WriteOptions& options,
                      const std::function<void(const std::string& temporaryPath)>& write);
 
+// The files and folders a command reads, so that no output replaces one (DESIGN.md, "An input is never
+// overwritten"). protectInput records `path` (an existing file or folder; others are ignored) by device
+// and inode, so a symlink or hard link to an input is the input. checkNotAnInput(path) throws UsageError
+// if `path` is a protected input, is an existing file inside a protected folder, or is a folder holding a
+// protected input; writeAtomically calls it first, --force or not, and so must any other way of
+// replacing a file or folder. Process-wide and thread-safe.
+void protectInput(const std::string& path);
+void checkNotAnInput(const std::string& path);
+
 // Writes `bytes` to a new file `path`, checking every write and the close; throws BadInput naming `path`
 // (inside writeAtomically the name is turned into the output's).
 void writeFileBytes(const std::string& path, std::string_view bytes);
