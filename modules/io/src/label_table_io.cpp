@@ -230,6 +230,12 @@ void parseCsvRow(std::string_view line, const CsvColumns& columns, LabelTable& t
   addEntry(table, parseLabelId(fields[columns.label], reader), fields[columns.name], color, reader);
 }
 
+// ITK-SNAP's seven numbers, then the quoted label; a Slicer line may hold a quote inside its name.
+bool isItkSnapRow(std::string_view line) {
+  const std::size_t quote = line.find('"');
+  return quote != std::string_view::npos && splitWhitespace(line.substr(0, quote)).size() == 7;
+}
+
 bool isTsvHeader(std::string_view line) { return lowerCase(splitTabs(line).front()) == "label"; }
 
 bool isCsvHeader(std::string_view line) {
@@ -273,7 +279,7 @@ LabelTable parseLabelTable(std::string_view text, const std::string& source) {
         csv = parseCsvHeader(line, reader);
         continue;
       }
-      kind = line.find('"') != std::string_view::npos ? Kind::ItkSnap : Kind::Slicer;
+      kind = isItkSnapRow(line) ? Kind::ItkSnap : Kind::Slicer;
     }
     switch (kind) {
       case Kind::Tsv: parseTsvRow(line, *tsv, table, reader); break;
@@ -354,10 +360,13 @@ std::string formatItkSnapLabels(const LabelTable& table) {
   };
   row(0, {{0, 0, 0}}, "   0  0  0", "Clear Label");
   for (const LabelEntry& entry : table.entries) {
-    if (entry.name.find_first_of("\"\r\n") != std::string::npos)
-      throw BadInput("", "name of label " + std::to_string(entry.id) +
-                             " holds a quote or line break, which an ITK-SNAP label description cannot carry");
-    row(entry.id, entry.color, "   1  1  1", entry.name);
+    // ITK-SNAP reads a label up to the next quote, and a line up to its end.
+    std::string name = entry.name;
+    for (char& c : name) {
+      if (c == '"') c = '\'';
+      if (c == '\r' || c == '\n') c = ' ';
+    }
+    row(entry.id, entry.color, "   1  1  1", name);
   }
   return text;
 }

@@ -176,9 +176,12 @@ TEST(LabelFormats, WrittenTablesFollowTheirProgramsLayout) {
   spaced.add({3, "subcutaneous fat", {{1, 2, 3}}});
   EXPECT_EQ(parseLabelTable(formatSlicerColorTable(spaced), "s.ctbl").find(3)->name, "subcutaneous_fat");
   EXPECT_EQ(parseLabelTable(formatItkSnapLabels(spaced), "s.txt").find(3)->name, "subcutaneous fat");
+  // ITK-SNAP reads a name up to the next quote: a quote in a name becomes an apostrophe. A Slicer name may
+  // hold a quote, and such a line is still read as Slicer's.
   LabelTable quoted;
   quoted.add({4, "a \"quoted\" name", {{1, 2, 3}}});
-  EXPECT_THROW(formatItkSnapLabels(quoted), BadInput);
+  EXPECT_EQ(parseLabelTable(formatItkSnapLabels(quoted), "q.txt").find(4)->name, "a 'quoted' name");
+  EXPECT_EQ(parseLabelTable(formatSlicerColorTable(quoted), "q.ctbl").find(4)->name, "a_\"quoted\"_name");
 }
 
 // writeLabelMap puts all three tables beside the map, and readLabelMap finds each of them alone.

@@ -6,7 +6,7 @@
 //   - 3D Slicer colour table CSV (Slicer 5.2+): a header "LabelValue,Name,Color_R,Color_G,Color_B,Color_A"
 //     (colour columns optional, terminology columns after them ignored), RFC 4180 quoting;
 //   - ITK-SNAP label description files: `IDX R G B A VIS MSH "LABEL"` lines, alpha 0..1
-//     (ITK-SNAP's ColorLabelTable::LoadFromFile); recognised by the quote in the first data line;
+//     (ITK-SNAP's ColorLabelTable::LoadFromFile); recognised by a first data line of seven fields and a quote;
 //   - 3D Slicer colour tables (.ctbl, .txt): whitespace-separated "id name [r g b [a]]" lines, colour
 //     components possibly fractional (rounded).
 // In all, empty lines and lines starting with '#' are skipped, id 0 (background, ITK-SNAP's "Clear Label")
@@ -17,7 +17,9 @@
 //
 // Written: our TSV, "label<TAB>name<TAB>r<TAB>g<TAB>b" with one row per entry, sorted by id; a Slicer
 // colour table ("id name r g b 255", opaque, spaces in names written as '_', id 0 "background" with alpha
-// 0); an ITK-SNAP label description file (its header, "Clear Label" for id 0, alpha 1, visible).
+// 0); an ITK-SNAP label description file (its header, "Clear Label" for id 0, alpha 1, visible; a quote in
+// a name is written as an apostrophe, a line break as a space, since ITK-SNAP reads a name up to the next
+// quote).
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
@@ -42,7 +44,7 @@ bool isLabelTableFile(const std::string& path);
 std::string formatLabelTable(const LabelTable& table);
 // A 3D Slicer colour table (.ctbl). Names with whitespace are written with '_' in its place.
 std::string formatSlicerColorTable(const LabelTable& table);
-// An ITK-SNAP label description file. Throws BadInput if a name holds a quote or line break.
+// An ITK-SNAP label description file.
 std::string formatItkSnapLabels(const LabelTable& table);
 
 enum class LabelTableFormat { Tsv, SlicerColorTable, ItkSnap };
