@@ -63,17 +63,18 @@ void printMarkers(const InfoOptions& o) {
   std::optional<GridGeometry> geometry;
   if (!o.scan.empty()) geometry = io::describeScan(o.scan).geometry;
   const MarkerSet set = io::readMarkers(o.file, io::MarkerReadOptions{MarkerKind::Landmark, geometry ? &*geometry : nullptr});
-  std::size_t undefined = 0, preview = 0;
+  std::size_t undefined = 0, preview = 0, missing = 0;
   for (const Marker& m : set.markers) {
     undefined += m.status == MarkerStatus::Undefined;
     preview += m.status == MarkerStatus::Preview;
+    missing += m.status == MarkerStatus::Missing;
   }
   std::cout << o.file << ": markers" << (set.name.empty() ? "" : " '" + set.name + "'") << "\n"
             << "  landmarks    " << set.count(MarkerKind::Landmark) << "\n"
             << "  ICP markers  " << set.count(MarkerKind::IcpMarker) << "\n"
             << "  attachments  " << set.count(MarkerKind::Attachment) << "\n"
             << "  status       " << set.countDefined() << " defined, " << undefined << " undefined, " << preview
-            << " preview\n"
+            << " preview, " << missing << " missing\n"
             << "  coordinates  LPS mm (as read; RAS files are converted)\n";
 }
 

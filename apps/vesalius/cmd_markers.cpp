@@ -60,7 +60,17 @@ void runConvert(const ConvertOptions& o) {
   report.output("markers", o.out);
   report.metric("markers", set.markers.size());
   o.common.finish(report);
-  std::cout << o.out << ": " << set.markers.size() << " markers (LPS)\n";
+  std::size_t unplaced = 0;
+  for (const Marker& m : set.markers) unplaced += !hasPosition(m.status);
+  std::cout << o.out << ": " << set.markers.size() << " markers (LPS)";
+  if (unplaced > 0) std::cout << ", " << unplaced << " without a position (undefined or missing)";
+  std::cout << "\n";
+  const std::vector<std::string> lost = io::markerFieldsNotKept(o.out, set);
+  if (!lost.empty()) {
+    std::cout << "not kept by " << fileExtension(o.out) << ":";
+    for (std::size_t i = 0; i < lost.size(); ++i) std::cout << (i ? ", " : " ") << lost[i];
+    std::cout << "\n";
+  }
 }
 
 void addConvert(CLI::App& markers) {
@@ -74,7 +84,9 @@ void addConvert(CLI::App& markers) {
       ->capture_default_str();
   addCommonOptions(*cmd, o->common);
   cmd->footer("Examples:\n  vesalius markers convert picked.fcsv --out picked.mrk.json\n"
-              "  vesalius markers convert landmarks.annot --scan ct.nii.gz --out landmarks.mrk.json");
+              "  vesalius markers convert landmarks.annot --scan ct.nii.gz --out landmarks.mrk.json\n"
+              "Statuses (defined, undefined, preview, missing), ids, associated nodes, ITK-SNAP colours and tags\n"
+              "are carried where the output format has a place for them; the command says what it has not.");
   cmd->callback([o] { runConvert(*o); });
 }
 

@@ -175,6 +175,66 @@ TEST(Cli, MarkersConvertKeepsPositionsAndRefusesToOverwrite) {
   EXPECT_EQ(runVesalius({"markers", "convert", in, "--out", out, "--force"}).exitCode, 0);
 }
 
+// Slicer 5.4's own file with a missing and an undefined point through .fcsv, .csv and back to .mrk.json:
+// statuses, ids, labels and the one position kept, and `info` counts the statuses.
+TEST(Cli, MarkersConvertCarriesSlicerStatusesAndIds) {
+  const std::string in = kData + "/slicer-markups/slicer5.4_missing.mrk.json";
+  const std::string fcsv = outputDir() + "/status.fcsv", csv = outputDir() + "/status.csv",
+                    json = outputDir() + "/status.mrk.json";
+  for (const std::string& p : {fcsv, csv, json}) fs::remove(p);
+  const CommandResult toFcsv = runVesalius({"markers", "convert", in, "--out", fcsv});
+  ASSERT_EQ(toFcsv.exitCode, 0) << toFcsv.err;
+  expectContains(toFcsv.out, "3 markers (LPS), 2 without a position");
+  ASSERT_EQ(runVesalius({"markers", "convert", fcsv, "--out", csv}).exitCode, 0);
+  ASSERT_EQ(runVesalius({"markers", "convert", csv, "--out", json}).exitCode, 0);
+  const MarkerSet original = io::readMarkers(in), back = io::readMarkers(json);
+  ASSERT_EQ(back.markers.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.markers[i].status, original.markers[i].status) << i;
+    EXPECT_EQ(back.markers[i].id, original.markers[i].id) << i;
+    EXPECT_EQ(back.markers[i].label, original.markers[i].label) << i;
+    EXPECT_EQ(back.markers[i].locked, original.markers[i].locked) << i;
+  }
+  EXPECT_EQ(back.markers[1].position, original.markers[1].position);
+  EXPECT_EQ(back.markers[0].status, MarkerStatus::Missing);
+  const CommandResult info = runVesalius({"info", json});
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  expectContains(info.out, "1 defined, 1 undefined, 0 preview, 1 missing");
+}
+
+// ITK-SNAP colours and tags survive .annot -> .mrk.json -> .annot; .fcsv says it drops them.
+TEST(Cli, MarkersConvertCarriesItkSnapColoursAndTags) {
+  const std::string scan = kData + "/ct-abdomen-pelvis/example_ct_sm.nii.gz";
+  const std::string in = kData + "/markers/itksnap4_color_tags.annot";
+  const std::string json = outputDir() + "/tags.mrk.json", annot = outputDir() + "/tags.annot",
+                    fcsv = outputDir() + "/tags.fcsv";
+  for (const std::string& p : {json, annot, fcsv}) fs::remove(p);
+  ASSERT_EQ(runVesalius({"markers", "convert", in, "--scan", scan, "--out", json}).exitCode, 0);
+  ASSERT_EQ(runVesalius({"markers", "convert", json, "--scan", scan, "--out", annot}).exitCode, 0);
+  const GridGeometry g = io::describeScan(scan).geometry;
+  const MarkerSet original = io::readMarkers(in, {MarkerKind::Landmark, &g}),
+                  back = io::readMarkers(annot, {MarkerKind::Landmark, &g});
+  ASSERT_EQ(back.markers.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(back.markers[i].color, original.markers[i].color) << i;
+    EXPECT_EQ(back.markers[i].tags, original.markers[i].tags) << i;
+    EXPECT_LT((back.markers[i].position - original.markers[i].position).norm(), 1e-6) << i;
+  }
+  const CommandResult toFcsv = runVesalius({"markers", "convert", json, "--out", fcsv});
+  ASSERT_EQ(toFcsv.exitCode, 0) << toFcsv.err;
+  expectContains(toFcsv.out, "not kept by .fcsv: colours and tags");
+}
+
+TEST(Cli, MarkersWithAnUnclosedQuoteAreRefusedInOneLine) {
+  const std::string in = kData + "/bad/markers_unclosed_quote.fcsv", out = outputDir() + "/unclosed.mrk.json";
+  fs::remove(out);
+  const CommandResult r = runVesalius({"markers", "convert", in, "--out", out});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  expectContains(r.err, in + ": line 4: field 12 opens a quote that is never closed");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, SegmentThenSurfaceOneLabelByName) {
   const std::string labels = outputDir() + "/ct-labels.nii.gz", bone = outputDir() + "/bone.stl";
   ASSERT_EQ(runVesalius({"segment", "--scan", kData + "/ct-abdomen-pelvis/example_ct_sm.nii.gz", "--modality", "ct",

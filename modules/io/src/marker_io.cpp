@@ -5,6 +5,7 @@
 #include "vesalius/io/marker_formats.h"
 #include "vesalius/io/text_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -46,6 +47,28 @@ std::string formatText(const std::string& path, const MarkerSet& set, const Grid
 }  // namespace
 
 bool isMarkerFile(const std::string& path) { return formatOf(path) != Format::Unknown; }
+
+std::vector<std::string> markerFieldsNotKept(const std::string& path, const MarkerSet& set) {
+  const Format format = formatOf(path);
+  if (format == Format::Unknown || format == Format::SlicerMarkups) return {};
+  auto any = [&](auto&& has) { return std::any_of(set.markers.begin(), set.markers.end(), has); };
+  const bool fcsv = format == Format::Fcsv, annot = format == Format::ItkSnapAnnot;
+  std::vector<std::string> lost;
+  // A .fcsv read back names its set only in Slicer 3's form, which we do not write.
+  if (!set.name.empty()) lost.push_back("the set's name");
+  // Read back, every marker takes the reader's --kind (landmark by default).
+  if ((fcsv || annot) && any([](const Marker& m) { return m.kind != MarkerKind::Landmark; })) lost.push_back("kinds");
+  if (any([](const Marker& m) { return m.templatePosition.has_value(); })) lost.push_back("template positions");
+  if (fcsv && any([](const Marker& m) { return m.color || !m.tags.empty(); })) lost.push_back("colours and tags");
+  if (annot) {
+    if (any([](const Marker& m) { return !m.id.empty(); })) lost.push_back("ids");
+    if (any([](const Marker& m) { return !m.associatedNodeID.empty(); })) lost.push_back("associated nodes");
+    if (any([](const Marker& m) { return !m.description.empty(); })) lost.push_back("descriptions");
+    if (any([](const Marker& m) { return !m.selected || m.locked || !m.visible; }))
+      lost.push_back("selected, locked and visible flags");
+  }
+  return lost;
+}
 
 MarkerSet readMarkers(const std::string& path, const MarkerReadOptions& options) {
   const Format format = formatOf(path);

@@ -10,6 +10,7 @@
 #include "vesalius/core/markers.h"
 
 #include <string>
+#include <vector>
 
 namespace vesalius::io {
 
@@ -31,5 +32,10 @@ void writeMarkers(const std::string& path, const MarkerSet& set, const WriteOpti
 
 // True if `path` has one of the extensions above.
 bool isMarkerFile(const std::string& path);
+
+// What of `set` a marker file at `path` has no place for (marker_formats.h), as words for a person:
+// e.g. {"kinds", "template positions"} for .fcsv. Empty when the format keeps all that `set` holds or
+// the extension is unknown.
+std::vector<std::string> markerFieldsNotKept(const std::string& path, const MarkerSet& set);
 
 }  // namespace vesalius::io
