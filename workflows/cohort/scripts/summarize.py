@@ -16,6 +16,7 @@ import csv
 import json
 import math
 import os
+import re
 import sys
 from typing import Dict, List
 
@@ -132,14 +133,15 @@ def write_png(rows: List[Dict[str, object]], path: str) -> None:
         left = [a + b for a, b in zip(left, widths)]
     for i, r in enumerate(rows):
         if r.get("status") != "ok":
-            ax.text(left[i], i, f"  {r.get('status')}: {str(r.get('error', ''))[:70]}", va="center",
-                    color="firebrick", fontsize=8)
+            # vesalius names the file first; the scan's name is on the axis, so the folder is left out
+            error = re.sub(r"(/[^/:\s]+)+/", "", str(r.get("error", "")).removeprefix("vesalius: "))
+            ax.text(left[i], i, f"  {r.get('status')}: {error[:80]}", va="center", color="firebrick", fontsize=8)
     ax.set_yticks(y, names)
     ax.invert_yaxis()
     ax.set_xlabel("stage time (s, report.json)")
     ax.set_title("per scan: stage times")
     if stages:
-        ax.legend(fontsize=7, loc="lower right")
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=4)
 
     ax = axes[0][1]
     mem = [float(r.get("peak_rss_mb") or 0.0) for r in rows]
