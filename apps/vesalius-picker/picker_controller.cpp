@@ -228,7 +228,8 @@ void PickerController::skipNamedLandmark() {
     message_ = "no named landmark left to place";
     return;
   }
-  message_ = "skipped " + document_.marker(*named).label + " (stays missing)";
+  message_ = "skipped " + document_.marker(*named).label + " (missing)";
+  if (document_.marker(*named).status != MarkerStatus::Missing) document_.markMissing(*named);
   namedLandmarkCursor_ = *named + 1;
 }
 

@@ -59,6 +59,12 @@ void PickerDocument::placeNamedMarker(std::size_t index, const Eigen::Vector3d& 
   record({{index, marker(index), placed}});
 }
 
+void PickerDocument::markMissing(std::size_t index) {
+  Marker missing = marker(index);
+  missing.status = MarkerStatus::Missing;
+  record({{index, marker(index), missing}});
+}
+
 void PickerDocument::requirePreview(std::size_t index) const {
   if (marker(index).status != MarkerStatus::Preview)
     throw UsageError("marker " + marker(index).label + " is not a suggestion (preview) to accept or reject");
@@ -168,7 +174,7 @@ std::optional<std::size_t> PickerDocument::nearestMarker(const Eigen::Vector3d& 
   double nearestDistance = maxDistance;
   for (std::size_t i = 0; i < markers_.markers.size(); ++i) {
     const Marker& m = markers_.markers[i];
-    if (m.status == MarkerStatus::Undefined || !m.visible || (accept && !accept(m))) continue;
+    if (!hasPosition(m.status) || !m.visible || (accept && !accept(m))) continue;
     const double distance = (m.position - point).norm();
     if (distance <= nearestDistance) {
       nearest = i;
@@ -180,10 +186,11 @@ std::optional<std::size_t> PickerDocument::nearestMarker(const Eigen::Vector3d& 
 
 std::optional<std::size_t> PickerDocument::nextUndefinedLandmark(std::size_t from) const {
   const std::size_t n = markers_.markers.size();
-  for (std::size_t step = 0; step < n; ++step) {
-    const Marker& m = markers_.markers[(from + step) % n];
-    if (m.kind == MarkerKind::Landmark && m.status == MarkerStatus::Undefined) return (from + step) % n;
-  }
+  for (MarkerStatus wanted : {MarkerStatus::Undefined, MarkerStatus::Missing})
+    for (std::size_t step = 0; step < n; ++step) {
+      const Marker& m = markers_.markers[(from + step) % n];
+      if (m.kind == MarkerKind::Landmark && m.status == wanted) return (from + step) % n;
+    }
   return std::nullopt;
 }
 

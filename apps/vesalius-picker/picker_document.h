@@ -37,8 +37,10 @@ class PickerDocument {
   std::size_t addMarker(MarkerKind kind, const Eigen::Vector3d& position);
   void moveMarker(std::size_t index, const Eigen::Vector3d& position);
   void removeMarker(std::size_t index);
-  // Gives an undefined (named, not yet placed) marker its position and makes it defined.
+  // Gives an undefined or missing (named, not placed) marker its position and makes it defined.
   void placeNamedMarker(std::size_t index, const Eigen::Vector3d& position);
+  // Marks a named marker missing (skipped: 3D Slicer's "missing" position status).
+  void markMissing(std::size_t index);
   // Makes preview marker `index` defined / deletes it. UsageError if it is not a preview.
   void acceptPreview(std::size_t index);
   void rejectPreview(std::size_t index);
@@ -65,7 +67,8 @@ class PickerDocument {
   std::optional<std::size_t> nearestMarker(const Eigen::Vector3d& point, double maxDistance,
                                            const std::function<bool(const Marker&)>& accept = {}) const;
 
-  // The first undefined landmark at or after `from` (wrapping around), i.e. the next name to place.
+  // The first undefined landmark at or after `from` (wrapping around), i.e. the next name to place;
+  // when none is left, the first missing (skipped) one, which is asked for again.
   std::optional<std::size_t> nextUndefinedLandmark(std::size_t from) const;
 
   // ---- Autosave ----

@@ -183,7 +183,7 @@ void SliceView::showMarkers(const MarkerSet& markers, std::uint64_t revision) {
   std::vector<MarkerGlyph> glyphs;
   for (const std::size_t i : markersOnSlice(markers, revision)) {
     const Marker& m = markers.markers[i];
-    if (m.status == MarkerStatus::Undefined || !m.visible) continue;
+    if (!hasPosition(m.status) || !m.visible) continue;
     Eigen::Vector3d plane = frame_.toPlane(m.position);
     plane.z() = kMarkerHeight;
     glyphs.push_back({plane, m.kind, m.status == MarkerStatus::Preview, m.label});
@@ -195,7 +195,7 @@ std::vector<std::size_t> SliceView::markersOnSlice(const MarkerSet& markers, std
   if (indexedRevision_ != revision) {
     markersByDepth_.clear();
     for (std::size_t i = 0; i < markers.markers.size(); ++i)
-      if (markers.markers[i].status != MarkerStatus::Undefined)
+      if (hasPosition(markers.markers[i].status))
         markersByDepth_.emplace_back(frame_.toPlane(markers.markers[i].position).z(), i);
     std::sort(markersByDepth_.begin(), markersByDepth_.end());
     indexedRevision_ = revision;

@@ -43,7 +43,7 @@ void View3D::showMarkers(const MarkerSet& markers, double labelOffset) {
   std::vector<MarkerGlyph> glyphs;
   int labelled = 0;
   for (const Marker& m : markers.markers) {
-    if (m.status == MarkerStatus::Undefined || !m.visible) continue;
+    if (!hasPosition(m.status) || !m.visible) continue;
     const bool label = m.kind != MarkerKind::IcpMarker && labelled < kMaxLabels;
     labelled += label;
     glyphs.push_back({m.position, m.kind, m.status == MarkerStatus::Preview, label ? m.label : std::string()});

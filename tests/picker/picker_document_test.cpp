@@ -119,6 +119,29 @@ TEST(PickerDocument, NamedLandmarksInOrderAndUndoOfPlacement) {
   EXPECT_EQ(document.marker(0).status, MarkerStatus::Undefined);
 }
 
+TEST(PickerDocument, SkippedLandmarksAreMissingAndAskedForLast) {
+  MarkerSet named;
+  for (const char* name : {"apex", "hilum", "tip"}) {
+    Marker m;
+    m.label = name;
+    m.status = MarkerStatus::Undefined;
+    named.markers.push_back(m);
+  }
+  PickerDocument document(named);
+  document.markMissing(0);
+  EXPECT_EQ(document.marker(0).status, MarkerStatus::Missing);
+  EXPECT_EQ(document.nextUndefinedLandmark(0), 1u);  // undefined ones come before the skipped one
+  document.placeNamedMarker(1, {1, 2, 3});
+  document.placeNamedMarker(2, {4, 5, 6});
+  ASSERT_EQ(document.nextUndefinedLandmark(1), 0u);  // then the skipped one is asked for again
+  EXPECT_FALSE(document.nearestMarker({0, 0, 0}, 1.0).has_value());  // no position: never picked
+  document.placeNamedMarker(0, {0, 0, 0});
+  EXPECT_EQ(document.marker(0).status, MarkerStatus::Defined);
+  EXPECT_FALSE(document.nextUndefinedLandmark(0).has_value());
+  document.undo();
+  EXPECT_EQ(document.marker(0).status, MarkerStatus::Missing);
+}
+
 TEST(PickerDocument, NearestMarkerHonoursRadiusAndFilter) {
   PickerDocument document;
   document.addMarker(MarkerKind::Landmark, {0, 0, 0});

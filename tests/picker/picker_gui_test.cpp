@@ -164,7 +164,7 @@ TEST(PickerGui, NamedLandmarksArePlacedInOrderAndSkippedOnesStayMissing) {
   EXPECT_EQ(saved.markers[0].status, MarkerStatus::Defined);
   EXPECT_LE((saved.markers[0].position - clickedWorldPoint(grid, kAxial, {160, 640}, 0)).norm(), 0.01);
   EXPECT_EQ(saved.markers[1].label, "hilum");
-  EXPECT_EQ(saved.markers[1].status, MarkerStatus::Undefined);  // skipped: missing, as 3D Slicer says
+  EXPECT_EQ(saved.markers[1].status, MarkerStatus::Missing);  // skipped, as 3D Slicer's "missing"
   EXPECT_EQ(saved.markers[2].label, "tip");
   EXPECT_EQ(saved.markers[2].status, MarkerStatus::Defined);
   EXPECT_LE((saved.markers[2].position - clickedWorldPoint(grid, kAxial, {240, 560}, 0)).norm(), 0.01);
