@@ -233,11 +233,11 @@ Edit morph(const Input& in, io::Report& report) {
 Edit crop(const Input& in, io::Report& report) {
   report.parameter("to_label", in.o.selected);
   report.parameter("margin_mm", in.o.marginMm);
-  // A margin beyond the map's own extent keeps the whole map whatever the labels; larger ones overflow
-  // the voxel arithmetic, so both are refused.
+  // A margin beyond the map's own extent keeps the whole map whatever the labels, and huge ones overflow
+  // the voxel arithmetic, so they are refused (negative and NaN margins by maskBounds).
   const GridGeometry& grid = in.map.labels.geometry;
   const double extent = (grid.size.cast<double>().array() * grid.spacing.array()).maxCoeff();
-  if (!(in.o.marginMm >= 0 && in.o.marginMm <= extent)) {
+  if (in.o.marginMm > extent) {
     std::ostringstream text;
     text << "labels crop: --margin-mm must be from 0 to " << extent << " mm (the largest extent of "
          << in.o.labels << "), not " << in.o.marginMm;
