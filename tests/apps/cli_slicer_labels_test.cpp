@@ -94,6 +94,23 @@ TEST(CliSlicerLabels, SurfaceFindsASegmentByName) {
   }
 }
 
+// `tetmesh` meshes a segment chosen by name; its tets keep the segment's voxel volume (label_surface.h).
+TEST(CliSlicerLabels, TetmeshMeshesASegmentByName) {
+  const std::string out = fresh("left-lung.vtu");
+  const CommandResult r = runVesalius({"tetmesh", "--labels", kSeg, "--label", "left lung", "--quality", "0",
+                                       "--out", out, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::TetMeshSummary s = io::summarize(io::readTetMesh(out));
+  ASSERT_EQ(s.tetsPerLabel.size(), 1u);
+  ASSERT_EQ(s.tetsPerLabel.count(6), 1u);  // "left lung" is Segment5_LabelValue 6
+  const LabelMap map = io::readLabelMap(kSeg);
+  const double voxelVolume = double(std::count(map.labels.values.begin(), map.labels.values.end(), 6)) *
+                             map.labels.geometry.spacing.prod();
+  std::cout << "left lung: " << s.tetsPerLabel.at(6) << " tets, " << s.volumePerLabel.at(6) << " mm^3 of "
+            << voxelVolume << " mm^3 of voxels\n";
+  EXPECT_NEAR(s.volumePerLabel.at(6) / voxelVolume, 1.0, 0.02);
+}
+
 TEST(CliSlicerLabels, OverlappingSegmentsAreRefusedWithTheirNames) {
   const std::string out = fresh("overlap-ribs.stl");
   const CommandResult r =
