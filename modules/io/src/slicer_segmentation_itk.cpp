@@ -73,6 +73,24 @@ void readVoxels(const std::string& path, itk::NrrdImageIO* io, RawSegmentationFi
   }
 }
 
+// NrrdImageIO says "Write: Error writing <file>:" and gives teem's chain of callers on the lines after it,
+// the innermost (the actual failure) last: "[nrrd] _nrrdEncodingGzip_write: error compressing".
+std::string writeFailure(const itk::ExceptionObject& error) {
+  const std::string first = itkErrorReason(error);
+  if (first.empty() || first.back() != ':') return first;
+  std::istringstream lines(error.GetDescription());
+  std::string line, reason;
+  while (std::getline(lines, line)) {
+    const std::size_t start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos) continue;
+    reason = line.substr(start);
+    const std::size_t tag = reason.find("] ");
+    if (reason.front() == '[' && tag != std::string::npos) reason = reason.substr(tag + 2);  // "[nrrd] "
+  }
+  while (!reason.empty() && (reason.back() == '\r' || reason.back() == ' ')) reason.pop_back();
+  return reason.empty() || reason == first ? "ITK's NRRD writer failed" : reason;
+}
+
 template <class T>
 void writeAs(const std::string& path, const RawHeader& header,
              const std::vector<std::pair<std::string, std::string>>& fields, const std::vector<std::uint16_t>& values) {
@@ -105,7 +123,7 @@ void writeAs(const std::string& path, const RawHeader& header,
   try {
     writer->Update();
   } catch (const itk::ExceptionObject& error) {
-    throw BadInput(path, "cannot write: " + itkErrorReason(error));
+    throw BadInput(path, "cannot write: " + writeFailure(error));
   }
 }
 
