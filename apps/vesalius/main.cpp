@@ -36,8 +36,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help, version, or the parse error
-    return code == 0 ? vesalius::kExitOk : vesalius::kExitUsage;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help or --version
+    // One line, as every other error: CLI11's own adds "Run with --help for more information." below it.
+    std::cerr << "vesalius: " << e.what() << " (see vesalius --help)\n";
+    return vesalius::kExitUsage;
   } catch (const vesalius::Error& e) {
     std::cerr << "vesalius: " << vesalius::cli::errorMessage(e) << '\n';
     return e.exitCode();

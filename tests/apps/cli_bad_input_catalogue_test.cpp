@@ -55,6 +55,7 @@ const std::vector<Case>& catalogue() {
       {"nifti_nan_srow", {"segment", "--scan", "{D}/nan_srow.nii", "--modality", "mri", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/nan_srow.nii: the orientation field srow_x[3] is not a finite number", "{D}/nan_srow.nii"},
       {"dicom_file_cut_at_1000_bytes", {"info", "{D}/cut1000.dcm"}, 3, "{D}/cut1000.dcm: the file is cut short", "{D}/cut1000.dcm"},
       {"dicom_folder_with_file_cut_at_1000_bytes", {"info", "{D}/dicom_cut1000"}, 3, "{D}/dicom_cut1000/01.dcm: the file is cut short", "{D}/dicom_cut1000/01.dcm"},
+      {"nifti_negative_size", {"info", "{D}/negative_size.nii"}, 3, "{D}/negative_size.nii: dim[3] is not a positive size", "{D}/negative_size.nii"},
       // Item 5: an output that is an input, --force or not.
       {"segment_out_is_scan", {"segment", "--scan", "{D}/mr.nii", "--modality", "mri", "--out", "{D}/mr.nii", "--force"}, 2, "{D}/mr.nii: --out names the input --scan {D}/mr.nii", "{D}/mr.nii"},
       {"segment_out_is_symlink_to_scan", {"segment", "--scan", "{D}/mr.nii", "--modality", "mri", "--out", "{D}/mr_symlink.nii", "--force"}, 2, "{D}/mr_symlink.nii: --out names the input --scan {D}/mr.nii", "{D}/mr.nii"},
@@ -83,6 +84,7 @@ const std::vector<Case>& catalogue() {
       // Item 9: messages that must name the file and exit codes that must say what went wrong.
       {"mri_constant", {"segment", "--scan", "{D}/constant.nii", "--modality", "mri", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/constant.nii: MRI is constant", "{D}/constant.nii"},
       {"ct_without_body", {"segment", "--scan", "{D}/air.nii", "--modality", "ct", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/air.nii: CT has no body", "{D}/air.nii"},
+      {"missing_required_option", {"segment", "--scan", "{D}/mr.nii"}, 2, "--out is required", "--out"},
       {"vtp_claiming_4e9_points", {"info", "{D}/huge.vtp"}, 3, "{D}/huge.vtp: NumberOfPoints=\"4000000000\" is more than", "{D}/huge.vtp"},
       {"output_name_too_long", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/" + std::string(300, 'x') + ".nii.gz"}, 2, "{D}/" + std::string(300, 'x') + ".nii.gz: --out names a path too long", "{D}/" + std::string(300, 'x') + ".nii.gz"},
   };
@@ -194,6 +196,9 @@ void makeFiles(const std::string& d) {
   const float rows[12] = {1, 0, 0, nan, 0, 1, 0, 0, 0, 0, 1, 0};
   for (int n = 0; n < 12; ++n) put<float>(srow, 280 + 4 * std::size_t(n), rows[n]);
   writeBytes(d + "/nan_srow.nii", srow);
+  std::string negativeSize = nifti(ramp());
+  put<std::int16_t>(negativeSize, 46, -8);  // dim[3]
+  writeBytes(d + "/negative_size.nii", negativeSize);
   std::vector<float> voxels = ramp();
   voxels[100] = nan;
   writeBytes(d + "/nan_voxel.nii", nifti(voxels));

@@ -108,6 +108,7 @@ struct NiftiLayout {
   std::uint64_t voxOffset = 0;
   std::array<std::int64_t, 3> size{{1, 1, 1}};
   bool swapped = false;
+  int badDim = 0;                  // the first dim[n] (n from 1 to dim[0]) below 1, or 0
 };
 
 template <class T>
@@ -131,6 +132,8 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
   const int dimensions = int(dim(0));
   if (dimensions < 1 || dimensions > 7) return layout;
   layout.axes = std::min(dimensions, 3);
+  for (int n = 1; n <= dimensions && layout.badDim == 0; ++n)
+    if (dim(n) < 1) layout.badDim = n;
   double voxels = 1;
   for (int n = 1; n <= dimensions; ++n) voxels *= std::max(dim(n), 1.0);
   for (int n = 0; n < layout.axes; ++n)
@@ -250,6 +253,9 @@ void checkNiftiFile(const std::string& path, bool wholeFile) {
   const int length = gzread(file.get(), header, sizeof header);
   const std::optional<NiftiLayout> layout = parseNiftiHeader(header, length);
   if (!layout) return;
+  // nifticlib reads a zero or negative size as 1 without a word.
+  if (layout->badDim > 0)
+    throw BadInput(path, "dim[" + std::to_string(layout->badDim) + "] is not a positive size");
   if (!layout->nonFinite.empty())
     throw BadInput(path, "the orientation field " + layout->nonFinite + " is not a finite number");
   for (int axis = 0; axis < layout->axes; ++axis)
