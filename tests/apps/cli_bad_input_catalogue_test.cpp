@@ -84,6 +84,7 @@ const std::vector<Case>& catalogue() {
       // Item 9: messages that must name the file and exit codes that must say what went wrong.
       {"mri_constant", {"segment", "--scan", "{D}/constant.nii", "--modality", "mri", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/constant.nii: MRI is constant", "{D}/constant.nii"},
       {"ct_without_body", {"segment", "--scan", "{D}/air.nii", "--modality", "ct", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/air.nii: CT has no body", "{D}/air.nii"},
+      {"reference_json_string_version", {"fat", "edit", "--reference", "{D}/reference_string_version", "--amounts", "{D}/amounts.json", "--out-mesh", "{D}/fat.vtp"}, 3, "{D}/reference_string_version/reference.json:", "{D}/reference_string_version/reference.json"},
       {"missing_required_option", {"segment", "--scan", "{D}/mr.nii"}, 2, "--out is required", "--out"},
       {"vtp_claiming_4e9_points", {"info", "{D}/huge.vtp"}, 3, "{D}/huge.vtp: NumberOfPoints=\"4000000000\" is more than", "{D}/huge.vtp"},
       {"output_name_too_long", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/" + std::string(300, 'x') + ".nii.gz"}, 2, "{D}/" + std::string(300, 'x') + ".nii.gz: --out names a path too long", "{D}/" + std::string(300, 'x') + ".nii.gz"},
@@ -280,6 +281,12 @@ void makeFiles(const std::string& d) {
   reference.tissues.push_back(bone);
   io::writeReferenceAnatomy(d + "/reference", reference, {});
   writeBytes(d + "/amounts.json", "{\"bone\": 1e308}\n");
+  fs::copy(d + "/reference", d + "/reference_string_version", fs::copy_options::recursive);
+  std::string json = readBytes(d + "/reference/reference.json");
+  const std::size_t version = json.find("\"version\": 1");
+  ASSERT_NE(version, std::string::npos);
+  json.replace(version, 12, "\"version\": \"1\"");
+  writeBytes(d + "/reference_string_version/reference.json", json);
 
   writeBytes(d + "/huge.vtp",
              "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
