@@ -109,7 +109,8 @@ TEST(CliMarkersSample, LiverMarkersLieOnTheLiverBoundary) {
   // The file says LPS and holds the same numbers we read (no conversion happened on the way).
   const nlohmann::json file = nlohmann::json::parse(readText(out));
   ASSERT_EQ(file["markups"].size(), 1u);
-  EXPECT_EQ(file["markups"][0]["name"], "icp");
+  EXPECT_EQ(file["markups"][0]["name"], "liver (icp)");  // the set's name (the label) and the kind
+  EXPECT_EQ(set.name, "liver");
   EXPECT_EQ(file["markups"][0]["coordinateSystem"], "LPS");
   const auto& first = file["markups"][0]["controlPoints"][0]["position"];
   EXPECT_DOUBLE_EQ(first[0].get<double>(), P(0, 0));
