@@ -47,7 +47,7 @@ void keepCholmodOnThisThread() {
 constexpr Eigen::Index kSolveColumns = 64;
 // Columns per in-place solve in the factor's order (no copies): each block streams the whole factor
 // twice, and larger blocks stream it fewer times. Six solves on 450 columns of the 38,921-tet
-// Laplacian's factor on both cores (session 19, CHOLMOD's column-major solves), blocks of 225 instead of
+// Laplacian's factor on both cores (CHOLMOD's column-major solves), blocks of 225 instead of
 // 56: 1.16 s of wall and 1.97-2.00 s of CPU instead of 1.26-1.29 s and 2.34-2.38 s.
 constexpr Eigen::Index kPermutedSolveColumns = 256;
 
