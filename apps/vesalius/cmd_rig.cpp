@@ -41,7 +41,8 @@ TriMesh toLps(TriMesh mesh, bool makeHuman) {
   return mesh;
 }
 
-Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
+// skin: as read (a MakeHuman body in base.obj's units), for placing a .mhskel's joints in it.
+Skeleton readSkeleton(const RigOptions& o, const TriMesh& skin, bool makeHuman) {
   if (fileExtension(o.skeleton) == ".bvh") {
     const Skeleton s = readMotion(o.skeleton).skeleton;
     return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
@@ -49,7 +50,7 @@ Skeleton readSkeleton(const RigOptions& o, bool makeHuman) {
   if (fileExtension(o.skeleton) != ".mhskel") throw UsageError("rig: --skeleton must be a .mhskel or .bvh file");
   const std::string base = o.baseMesh.empty() ? (fs::path(o.skeleton).parent_path() / "base.obj").string() : o.baseMesh;
   if (!fs::exists(base)) throw UsageError(o.skeleton + ": a MakeHuman skeleton needs its base mesh; pass --base-mesh");
-  const Skeleton s = io::readMakeHumanSkeleton(o.skeleton, io::readTriMesh(base).V);
+  const Skeleton s = io::readMakeHumanSkeletonOfBody(o.skeleton, io::readTriMesh(base), skin);
   return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
 }
 
@@ -100,8 +101,10 @@ void runSkinRig(const RigOptions& o) {
   report.parameter("capsule_radius_fraction", o.rig.capsules.radiusFraction);
   report.parameter("capsule_end_trim", o.rig.capsules.endTrim);
   Progress progress(o.common.progressStyle());
-  const TriMesh skin = toLps(io::readTriMesh(o.skin), makeHuman);
-  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, readSkeleton(o, makeHuman), o.rig, o.skin, &progress);
+  const TriMesh asRead = io::readTriMesh(o.skin);
+  const Skeleton skeleton = readSkeleton(o, asRead, makeHuman);
+  const TriMesh skin = toLps(asRead, makeHuman);
+  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, skeleton, o.rig, o.skin, &progress);
   finishRig(o, built, withTissues(o, {{"skin" + fileExtension(o.skin), skin}}, makeHuman), report);
 }
 
@@ -187,7 +190,8 @@ void addRigCommand(CLI::App& app) {
       "Example (with the centres of rotation for `pose --method cor`; add --no-cor-centres to skip them):\n"
       "  vesalius rig --skin testdata/body/shapes/mh_neutral_body.obj "
       "--skeleton testdata/body/default.mhskel --out body-rig\n"
-      "Bones are capsules around the skeleton's segments (no bone meshes are needed); see docs/methods/posing.md.\n"
+      "Bones are capsules around the skeleton's segments (no bone meshes are needed); a MakeHuman body of any shape\n"
+      "gets its own joints; see docs/methods/posing.md.\n"
       "From a CT's bone labels (TotalSegmentator names; the pelvis, femurs and lumbar spine):\n"
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"

@@ -18,9 +18,9 @@ patient::FullBodySources readFullBodySources(const std::string& skin, const std:
   s.name = "full body (" + fs::path(skin).filename().string() + ", " + fs::path(model).filename().string() + ")";
   const TriMesh baseTriMesh = io::readTriMesh(base);
   s.skin = io::readTriMesh(skin);
+  s.rig = io::transformSkeleton(io::readMakeHumanSkeletonOfBody(skeleton, baseTriMesh, s.skin), io::yUpToLps(), 100.0);
   if (s.skin.UV.rows() == 0) s.skin = io::withMakeHumanUv(std::move(s.skin), baseTriMesh, base);
   s.skin.V = io::transformPoints(s.skin.V, io::yUpToLps(), 100.0);
-  s.rig = io::transformSkeleton(io::readMakeHumanSkeleton(skeleton, baseTriMesh.V), io::yUpToLps(), 100.0);
   s.model = io::readOpenSimModel(model);
   s.model.bodies = io::transformSkeleton(s.model.bodies, io::openSimToLps(), 1000.0);
   for (Muscle& m : s.model.muscles)

@@ -1,14 +1,18 @@
 // MakeHuman rigs: .mhskel skeletons and .mhw skin weights (JSON). See skeleton_io.h.
 #include "vesalius/io/skeleton_io.h"
+#include "vesalius/io/makehuman_target.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/mean_value_coordinates.h"
 #include "vesalius/io/marker_formats.h"
 #include "vesalius/io/text_file.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace vesalius::io {
 
@@ -187,4 +191,72 @@ SkinWeights readMakeHumanWeights(const std::string& mhwPath, const Skeleton& ske
   return parseMakeHumanWeights(readTextFile(mhwPath), mhwPath, skeleton, vertexCount);
 }
 
+bool isMakeHumanBody(const TriMesh& base, const TriMesh& body) {
+  return body.V.rows() > 0 && body.V.rows() <= base.V.rows() && body.F.rows() > 0 && body.F.rows() <= base.F.rows() &&
+         body.F == base.F.topRows(body.F.rows()) && body.F.maxCoeff() < body.V.rows() &&
+         (body.V.rows() == base.V.rows() || base.F.bottomRows(base.F.rows() - body.F.rows()).minCoeff() >= body.V.rows());
+}
+
+Skeleton readMakeHumanSkeletonOfBody(const std::string& mhskelPath, const TriMesh& base, const TriMesh& body) {
+  const std::string text = readTextFile(mhskelPath);
+  if (!isMakeHumanBody(base, body) || body.V.rows() == base.V.rows())
+    return parseMakeHumanSkeleton(text, mhskelPath, isMakeHumanBody(base, body) ? body.V : base.V);
+  // Only the helper vertices that joints name are carried (about 1,000 of base.obj's 5,778 helpers).
+  std::vector<Eigen::Index> carried;
+  const Json doc = parseJson(text, mhskelPath);
+  for (const auto& [name, vertices] : objectMember(doc, "joints", mhskelPath).items())
+    if (vertices.is_array())
+      for (const Json& v : vertices)
+        if (v.is_number_integer() && v.get<long long>() >= body.V.rows() && v.get<long long>() < base.V.rows())
+          carried.push_back(Eigen::Index(v.get<long long>()));
+  std::sort(carried.begin(), carried.end());
+  carried.erase(std::unique(carried.begin(), carried.end()), carried.end());
+  TriMesh cage;
+  cage.V = base.V.topRows(body.V.rows());
+  cage.F = body.F;
+  MatrixX3d points(Eigen::Index(carried.size()), 3);
+  for (std::size_t i = 0; i < carried.size(); ++i) points.row(Eigen::Index(i)) = base.V.row(carried[i]);
+  const Eigen::MatrixXd moved = meanValueInterpolate(cage, body.V - cage.V, points);
+  Eigen::MatrixX3d vertices = base.V;
+  vertices.topRows(body.V.rows()) = body.V;
+  for (std::size_t i = 0; i < carried.size(); ++i) vertices.row(carried[i]) += moved.row(Eigen::Index(i));
+  return parseMakeHumanSkeleton(text, mhskelPath, vertices);
+}
+
+MakeHumanTarget parseMakeHumanTarget(std::string_view text, const std::string& source) {
+  std::vector<int> vertex;
+  std::vector<Eigen::Vector3d> offset;
+  std::size_t start = 0;
+  for (long line = 1; start < text.size(); ++line) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string row(text.substr(start, end - start));
+    start = end + 1;
+    if (const std::size_t hash = row.find('#'); hash != std::string::npos) row.resize(hash);
+    if (row.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream in(row);
+    long long index = -1;
+    Eigen::Vector3d d;
+    std::string rest;
+    if (!(in >> index >> d.x() >> d.y() >> d.z()) || (in >> rest) || index < 0 || index > 100'000'000 || !d.allFinite())
+      fail(source, "line " + std::to_string(line) + ": expected a vertex index and three finite offsets");
+    vertex.push_back(int(index));
+    offset.push_back(d);
+  }
+  MakeHumanTarget t;
+  t.vertex = Eigen::Map<const Eigen::VectorXi>(vertex.data(), Eigen::Index(vertex.size()));
+  t.offset.resize(Eigen::Index(offset.size()), 3);
+  for (std::size_t i = 0; i < offset.size(); ++i) t.offset.row(Eigen::Index(i)) = offset[i].transpose();
+  return t;
+}
+
+MakeHumanTarget readMakeHumanTarget(const std::string& path) { return parseMakeHumanTarget(readTextFile(path), path); }
+
+TriMesh applyMakeHumanTarget(TriMesh body, const MakeHumanTarget& target, double weight) {
+  for (Eigen::Index k = 0; k < target.vertex.size(); ++k)
+    if (target.vertex[k] < body.V.rows()) body.V.row(target.vertex[k]) += weight * target.offset.row(k);
+  return body;
+}
+
 }  // namespace vesalius::io
+

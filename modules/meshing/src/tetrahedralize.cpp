@@ -231,14 +231,19 @@ TetMesh meshToTarget(const TriMesh& all, const std::vector<RegionSeed>& seeds, c
   // below the bound on average) and rescale by the count obtained. A run stopped by its budget has too few
   // tets for its bound, so the rescaled bound is too small: it is at least doubled.
   double bound = 3.0 * volume / double(options.targetTets);
+  // The dihedral smoothing runs once, on the attempt kept (earlier attempts are thrown away, and on a
+  // body the smoothing takes several times TetGen's own time).
   TetgenRun run;
+  double kept = bound;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    run = mesh(all, seeds, labels, options, bound);
+    run = runTetgen(all, seeds, labels, options, bound);
+    kept = bound;
     const double ratio = double(run.tets.T.rows()) / double(options.targetTets);
     if (!run.budgetUsed && std::abs(ratio - 1.0) <= 0.15) break;
     bound *= run.budgetUsed ? std::max(2.0, ratio) : ratio;
   }
   if (run.budgetUsed) budgetUsed(options, source);
+  if (options.radiusEdge > 0) improveDihedrals(run.tets, options.minDihedral, kept);
   return std::move(run.tets);
 }
 

@@ -3,6 +3,7 @@
 // a writer would have no user (a posed result goes out as BVH, motion_io.h).
 #pragma once
 
+#include "vesalius/core/mesh.h"
 #include "vesalius/core/skeleton.h"
 
 #include <Eigen/Core>
@@ -26,6 +27,19 @@ namespace vesalius::io {
 // parents, cycles, vertex indices outside baseVertices, or malformed JSON.
 Skeleton parseMakeHumanSkeleton(std::string_view text, const std::string& source, const Eigen::MatrixX3d& baseVertices);
 Skeleton readMakeHumanSkeleton(const std::string& mhskelPath, const Eigen::MatrixX3d& baseVertices);
+
+// The .mhskel's skeleton placed in `body`, so that a body of another shape gets its own joints rather
+// than base.obj's. `body` is of base.obj's topology when it has all of base.obj's vertices or its first
+// ones (the "body" group, which base.obj lists first: a body exported without MakeHuman's helpers), with
+// base.obj's first faces (the same vertices joined the same way), in base.obj's units. Joints on body
+// vertices are then the body's; most joints sit at the centres of MakeHuman's "joint-*" cubes inside
+// the body, and those cube vertices move with the body's change from the base: the mean-value
+// interpolation of its vertices' displacements (core/mean_value_coordinates.h), exact for a body
+// stretched or sheared as a whole. A body of any other topology gets base.obj's joints.
+Skeleton readMakeHumanSkeletonOfBody(const std::string& mhskelPath, const TriMesh& base, const TriMesh& body);
+
+// Whether `body` has base.obj's topology (see above).
+bool isMakeHumanBody(const TriMesh& base, const TriMesh& body);
 
 // A .mhw is JSON: "weights": {bone: [[vertex, weight], ...]}. Gives #V (= vertexCount) by
 // #skeleton.joints weights. Each weighted vertex's row is normalised to sum 1, as MakeHuman does on
