@@ -3,6 +3,7 @@
 #include "vesalius/io/image_io.h"
 
 #include "image_io_itk.h"
+#include "raw_geometry.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/label_table_io.h"
@@ -82,17 +83,6 @@ StoredType storedTypeOf(PixelType pixel) {
       ->first;
 }
 
-GridGeometry geometryOf(const itk_seam::RawHeader& header) {
-  GridGeometry geometry;
-  for (int axis = 0; axis < 3; ++axis) {
-    geometry.size[axis] = header.size[axis];
-    geometry.origin[axis] = header.origin[axis];
-    geometry.spacing[axis] = header.spacing[axis];
-    for (int column = 0; column < 3; ++column)
-      geometry.direction(axis, column) = header.direction[3 * axis + column];
-  }
-  return geometry;
-}
 
 itk_seam::RawHeader rawHeaderOf(const GridGeometry& geometry, PixelType pixelType) {
   itk_seam::RawHeader header;
@@ -278,6 +268,18 @@ void nameUnlistedLabels(const std::vector<Label>& labels, LabelTable& table) {
 }
 
 }  // namespace
+
+GridGeometry geometryOf(const itk_seam::RawHeader& header) {
+  GridGeometry geometry;
+  for (int axis = 0; axis < 3; ++axis) {
+    geometry.size[axis] = header.size[axis];
+    geometry.origin[axis] = header.origin[axis];
+    geometry.spacing[axis] = header.spacing[axis];
+    for (int column = 0; column < 3; ++column)
+      geometry.direction(axis, column) = header.direction[3 * axis + column];
+  }
+  return geometry;
+}
 
 Image readScan(const std::string& path, const ScanReadOptions& options) {
   return readScanAs(path, scanFormatOf(path), options);

@@ -2,6 +2,7 @@
 // work is behind slicer_segmentation_itk.h; this file sees the system Eigen only.
 #include "vesalius/io/slicer_segmentation.h"
 
+#include "raw_geometry.h"
 #include "slicer_segmentation_itk.h"
 
 #include "vesalius/core/error.h"
@@ -19,16 +20,6 @@ namespace {
 
 using Fields = std::vector<std::pair<std::string, std::string>>;
 
-GridGeometry geometryOf(const itk_seam::RawHeader& header) {
-  GridGeometry geometry;
-  for (int axis = 0; axis < 3; ++axis) {
-    geometry.size[axis] = header.size[axis];
-    geometry.origin[axis] = header.origin[axis];
-    geometry.spacing[axis] = header.spacing[axis];
-    for (int column = 0; column < 3; ++column) geometry.direction(axis, column) = header.direction[3 * axis + column];
-  }
-  return geometry;
-}
 
 itk_seam::RawHeader rawHeaderOf(const GridGeometry& geometry) {
   itk_seam::RawHeader header;
