@@ -1,7 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Vesalius builds and tests with. Idempotent: prints nothing when all
-# packages are already there. Run as root (or with sudo available).
+# Installs the Debian 12 packages Vesalius builds and tests with, or the packages named after
+# `--packages` (scripts/install-workflow-deps.sh). Idempotent: prints nothing when all packages are
+# already there. With --check it installs nothing and exits 1 when a package is missing. Run as root (or
+# with sudo available).
 set -euo pipefail
+
+check=false
+if [ "${1:-}" = --check ]; then check=true; shift; fi
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
@@ -11,6 +16,8 @@ PACKAGES=(
   libx11-dev xvfb xauth clang libclang-rt-14-dev
 )
 
+if [ "${1:-}" = --packages ]; then shift; PACKAGES=("$@"); fi
+
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -18,6 +25,7 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
+$check && exit 1
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi

@@ -6,20 +6,4 @@
 # when a package is missing.
 set -euo pipefail
 
-PACKAGES=(snakemake python3-matplotlib slurm-wlm munge)
-
-missing=()
-for p in "${PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$p")
-  fi
-done
-[ ${#missing[@]} -eq 0 ] && exit 0
-[ "${1:-}" = --check ] && exit 1
-
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "Installing ${#missing[@]} Debian packages: ${missing[*]}" >&2
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq >/dev/null
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+exec "$(dirname "$0")/install-deps.sh" ${1:+"$1"} --packages snakemake python3-matplotlib slurm-wlm munge
