@@ -8,24 +8,25 @@
 #include "thickness_input.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/meshing/body_distance.h"
 #include "vesalius/patient/transfer_into_body.h"
-#include "vesalius/transfer/anatomy_checks.h"
+#include "vesalius/transfer/anatomy_rules.h"
 #include "vesalius/transfer/anatomy_transfer.h"
 #include "vesalius/transfer/articulated_registration.h"
 #include "vesalius/transfer/skin_registration.h"
 #include "vesalius/viz/surface_render.h"
 
-#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
-#include <limits>
 #include <iomanip>
 #include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -76,127 +77,101 @@ transfer::SkinRegistration registerReferenceSkin(const ReferenceAnatomy& referen
       .registration;
 }
 
-// The signed distance at every tissue vertex.
-std::vector<Eigen::VectorXd> signedDistances(const Grid<float>& distance, const std::vector<MatrixX3d>& tissues) {
-  std::vector<Eigen::VectorXd> result;
-  for (const MatrixX3d& V : tissues) result.push_back(transfer::sampleSignedDistance(distance, V, meshing::kDistanceBandMm));
-  return result;
+// Per tissue, the metric `prefix` + NAME where a count is not zero.
+template <class Count>
+void perTissue(const ReferenceAnatomy& anatomy, const transfer::AnatomyRules& rules, const std::string& prefix,
+               Count count, io::Report& report) {
+  for (std::size_t t = 0; t < rules.tissues.size(); ++t)
+    if (const long n = count(rules.tissues[t])) report.metric(prefix + anatomy.tissues[t].name, n);
 }
 
-// Of the rows of V outside a skin (distance > 0), how many lie nearest a triangle of it (`tree` over
-// `skin`, the reference's topology) with a cut vertex: outside through a scan's cut, which is not skin (the
-// body goes on), not through the skin.
-long outsideAtCut(const TriMesh& skin, const TriangleTree& tree, const std::vector<bool>& cut, const MatrixX3d& V,
-                  const Eigen::VectorXd& distance) {
-  std::vector<Eigen::Index> outside;
-  for (Eigen::Index r = 0; r < V.rows(); ++r)
-    if (distance[r] > 0) outside.push_back(r);
-  if (outside.empty() || std::find(cut.begin(), cut.end(), true) == cut.end()) return 0;
-  long atCut = 0;
-  for (const ClosestPoint& c : tree.closest(MatrixX3d(V(outside, Eigen::all))))
-    atCut += cut[std::size_t(skin.F(c.face, 0))] || cut[std::size_t(skin.F(c.face, 1))] || cut[std::size_t(skin.F(c.face, 2))];
-  return atCut;
-}
+// The anatomical rules (transfer/anatomy_rules.h) in the report: the transferred anatomy against the
+// reference, each measured on the body the pipeline made of its skin (`body`: the registered skin's, with
+// its cavities), `deepMm` one field voxel; R1 and R2 also for the interpolated bones (the skin's field
+// alone, the seed's Fig. 4 left), beside each bone group's map.
+transfer::AnatomyRules reportRules(const ReferenceAnatomy& reference, const patient::TransferIntoBody& into,
+                                   const meshing::BodyDistance& body, double deepMm, io::Report& report) {
+  const transfer::TransferredAnatomy& result = into.transferred;
+  transfer::AnatomyRulesOptions options;
+  options.skinDistance = &body.signedDistance;
+  options.skinCavities = &body.cavities;
+  options.referenceSkinDistance = &into.referenceBody.signedDistance;
+  options.referenceSkinCavities = &into.referenceBody.cavities;
+  options.deepMm = deepMm;
+  const transfer::AnatomyRules rules = transfer::checkAnatomyRules(reference, into.anatomy, &result.finalField, options);
+  ReferenceAnatomy interpolated = into.anatomy;
+  for (std::size_t t = 0; t < interpolated.tissues.size(); ++t) interpolated.tissues[t].mesh.V = result.interpolated[t];
+  transfer::AnatomyRulesOptions bones;
+  bones.outside = bones.folds = bones.interpenetration = false;
+  const transfer::AnatomyRules step1 = transfer::checkAnatomyRules(reference, interpolated, nullptr, bones);
 
-// The vertices inside the reference skin that the transfer put outside the target's (R5, R6), beside
-// those outside in the reference already and all those outside the target's skin: a segmentation's labels
-// may run a voxel past its body surface where the field of view cuts both, and no transfer should be blamed
-// for that (nor for a reference whose bones poke out of its own skin). Vertices within a field
-// voxel of the reference skin (tissues flush with a cut, a muscle touching the skin) can cross it by the
-// field's first-order error at the skin; `deepMm` counts those deeper apart. Both bodies include their
-// cavities (meshing/body_distance.h), whose volumes the report gives, and the vertices that lie in them. Of those
-// outside, the ones at a cut are counted apart (outsideAtCut). `registered`: the reference skin registered
-// onto the target, the skin `body` measures.
-void reportInside(const meshing::BodyDistance& referenceBody, const meshing::BodyDistance& body, const ReferenceAnatomy& reference,
-                  const TriMesh& registered, const transfer::TransferredAnatomy& result, double deepMm,
-                  io::Report& report) {
-  std::vector<MatrixX3d> rest;
-  for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
-  const std::vector<Eigen::VectorXd> before = signedDistances(referenceBody.signedDistance, rest),
-                                     after = signedDistances(body.signedDistance, result.tissues);
-  report.metric("reference_skin_cavities_ml", referenceBody.cavitiesMl);
+  // R5, R6.
+  const transfer::OutsideRule& o = rules.outside;
+  report.metric("reference_skin_cavities_ml", into.referenceBody.cavitiesMl);
   report.metric("target_skin_cavities_ml", body.cavitiesMl);
-  std::vector<bool> cut(std::size_t(reference.skin.V.rows()), false);
-  for (const int v : reference.skinCutVertices) cut[std::size_t(v)] = true;
-  const TriangleTree referenceTree(reference.skin.V, reference.skin.F), targetTree(registered.V, registered.F);
-  long total = 0, outsideBefore = 0, outsideAfter = 0, pushedOut = 0, deepPushedOut = 0, inCavitiesBefore = 0,
-       inCavitiesAfter = 0, atCutBefore = 0, atCutAfter = 0;
-  double worstPushedOut = 0;
-  for (std::size_t t = 0; t < rest.size(); ++t) {
-    atCutBefore += outsideAtCut(reference.skin, referenceTree, cut, rest[t], before[t]);
-    atCutAfter += outsideAtCut(registered, targetTree, cut, result.tissues[t], after[t]);
-    long tissueOutsideBefore = 0, tissuePushedOut = 0, tissueDeep = 0;
-    for (Eigen::Index r = 0; r < rest[t].rows(); ++r) {
-      ++total;
-      outsideAfter += after[t][r] > 0;
-      if (before[t][r] > 0) {
-        ++tissueOutsideBefore;
-      } else if (after[t][r] > 0) {
-        ++tissuePushedOut;
-        tissueDeep += before[t][r] <= -deepMm;
-        worstPushedOut = std::max(worstPushedOut, after[t][r]);
-      }
-    }
-    outsideBefore += tissueOutsideBefore;
-    pushedOut += tissuePushedOut;
-    deepPushedOut += tissueDeep;
-    if (tissueOutsideBefore) report.metric("reference_outside_vertices_" + reference.tissues[t].name, tissueOutsideBefore);
-    const long referenceInCavities = meshing::verticesInCavities(referenceBody, rest[t]),
-               targetInCavities = meshing::verticesInCavities(body, result.tissues[t]);
-    inCavitiesBefore += referenceInCavities;
-    inCavitiesAfter += targetInCavities;
-    if (referenceInCavities) report.metric("reference_in_cavities_vertices_" + reference.tissues[t].name, referenceInCavities);
-    if (targetInCavities) report.metric("target_in_cavities_vertices_" + reference.tissues[t].name, targetInCavities);
-    if (tissuePushedOut) report.metric("pushed_out_vertices_" + reference.tissues[t].name, tissuePushedOut);
-    if (tissueDeep) report.metric("pushed_out_deep_vertices_" + reference.tissues[t].name, tissueDeep);
-  }
-  report.metric("tissue_vertices", total);
-  report.metric("reference_outside_vertices", outsideBefore);
-  report.metric("target_outside_vertices", outsideAfter);
-  report.metric("reference_outside_at_cut_vertices", atCutBefore);
-  report.metric("target_outside_at_cut_vertices", atCutAfter);
-  report.metric("reference_in_cavities_vertices", inCavitiesBefore);
-  report.metric("target_in_cavities_vertices", inCavitiesAfter);
-  report.metric("pushed_out_vertices", pushedOut);
-  report.metric("pushed_out_worst_mm", worstPushedOut);
-  report.metric("pushed_out_deep_vertices", deepPushedOut);
+  report.metric("tissue_vertices", o.vertices);
+  report.metric("reference_outside_vertices", o.referenceOutside);
+  report.metric("target_outside_vertices", o.outside);
+  report.metric("target_outside_worst_mm", o.worstMm);
+  report.metric("reference_outside_at_cut_vertices", o.referenceOutsideAtCut);
+  report.metric("target_outside_at_cut_vertices", o.outsideAtCut);
+  report.metric("reference_in_cavities_vertices", o.referenceInCavities);
+  report.metric("target_in_cavities_vertices", o.inCavities);
+  report.metric("pushed_out_vertices", o.pushedOut);
+  report.metric("pushed_out_worst_mm", o.pushedOutWorstMm);
+  report.metric("pushed_out_deep_vertices", o.pushedOutDeep);
   report.metric("deep_means_mm", deepMm);
-}
+  using Row = transfer::TissueRules;
+  perTissue(reference, rules, "reference_outside_vertices_", [](const Row& r) { return r.referenceOutside; }, report);
+  perTissue(reference, rules, "reference_in_cavities_vertices_", [](const Row& r) { return r.referenceInCavities; }, report);
+  perTissue(reference, rules, "target_in_cavities_vertices_", [](const Row& r) { return r.inCavities; }, report);
+  perTissue(reference, rules, "pushed_out_vertices_", [](const Row& r) { return r.pushedOut; }, report);
+  perTissue(reference, rules, "pushed_out_deep_vertices_", [](const Row& r) { return r.pushedOutDeep; }, report);
 
-// Rules R1, R2: long bones' centre lines (transfer::isLongBone), the trunk's mirror symmetry, before and after.
-void reportBones(const ReferenceAnatomy& reference, const transfer::TransferredAnatomy& result, io::Report& report) {
-  nlohmann::json bones = nlohmann::json::array();
+  // The final field's folds.
+  const transfer::JacobianSummary& jacobian = rules.folds.jacobian;
+  const auto point = [](const Eigen::Vector3d& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
+  report.metric("jacobian_min", jacobian.minimum);
+  report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
+  report.metric("jacobian_min_at", point(jacobian.whereMinimum));
+  report.metric("jacobian_interior_min", jacobian.interiorMinimum);
+  report.metric("jacobian_interior_min_at", point(jacobian.whereInteriorMinimum));
+  report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
+
+  // R1, R2 per bone group, with its map and bend.
+  nlohmann::json groups = nlohmann::json::array();
   for (const transfer::BoneGroupMap& group : result.boneGroups) {
     nlohmann::json g{{"group", group.group}, {"symmetric", group.symmetric}, {"rms_to_attractor_mm", group.rmsToAttractorMm},
                      {"determinant", group.map.A.determinant()}, {"bent_vertices", group.bend.outsideBefore},
                      {"bend_largest_mm", group.bend.largestMoveMm}, {"outside_after_bend", group.bend.outsideAfter}};
-    if (group.symmetric) {
-      // A pair (hips, ribs) is symmetric as a whole: the group's meshes are measured together.
-      TriMesh rest, interpolated, registered;
-      for (const int t : group.tissues) {
-        TriMesh part = reference.tissues[t].mesh;
-        rest = rest.V.rows() ? concatenate(rest, part) : part;
-        part.V = result.interpolated[t];
-        interpolated = interpolated.V.rows() ? concatenate(interpolated, part) : part;
-        part.V = result.tissues[t];
-        registered = registered.V.rows() ? concatenate(registered, part) : part;
-      }
-      g["mirror_asymmetry_mm"] = {{"reference", transfer::mirrorAsymmetry(rest.V, rest.F, reference.sagittal)},
-                                  {"interpolated", transfer::mirrorAsymmetry(interpolated.V, rest.F, result.sagittal)},
-                                  {"registered", transfer::mirrorAsymmetry(registered.V, rest.F, result.sagittal)}};
-    } else {
-      for (const int t : group.tissues) {
-        const MatrixX3d& rest = reference.tissues[t].mesh.V;
-        if (!transfer::isLongBone(rest)) continue;
-        g["centre_line_deviation"][reference.tissues[t].name] = {
-            {"reference", transfer::centreLineDeviation(rest, rest)},
-            {"interpolated", transfer::centreLineDeviation(rest, result.interpolated[t])},
-            {"registered", transfer::centreLineDeviation(rest, result.tissues[t])}};
-      }
-    }
-    bones.push_back(g);
+    for (std::size_t s = 0; s < rules.symmetry.groups.size(); ++s)
+      if (rules.symmetry.groups[s].group == group.group)
+        g["mirror_asymmetry_mm"] = {{"reference", rules.symmetry.groups[s].referenceAsymmetryMm},
+                                    {"interpolated", step1.symmetry.groups[s].asymmetryMm},
+                                    {"registered", rules.symmetry.groups[s].asymmetryMm}};
+    for (const int t : group.tissues)
+      if (!std::isnan(rules.tissues[std::size_t(t)].centreLineDeviation))
+        g["centre_line_deviation"][reference.tissues[std::size_t(t)].name] = {
+            {"reference", rules.tissues[std::size_t(t)].referenceCentreLineDeviation},
+            {"interpolated", step1.tissues[std::size_t(t)].centreLineDeviation},
+            {"registered", rules.tissues[std::size_t(t)].centreLineDeviation}};
+    groups.push_back(g);
   }
-  report.metric("bone_groups", bones);
+  report.metric("bone_groups", groups);
+
+  // Tissues into one another, beyond the reference's own overlap.
+  const transfer::InterpenetrationRule& p = rules.interpenetration;
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const transfer::Interpenetration& pair : p.pairs)
+    pairs.push_back({{"tissues", {reference.tissues[std::size_t(pair.a)].name, reference.tissues[std::size_t(pair.b)].name}},
+                     {"depth_mm", pair.depthMm}, {"reference_depth_mm", pair.referenceDepthMm},
+                     {"vertices", pair.vertices}, {"at", point(pair.at)}});
+  report.metric("interpenetrating_pairs", pairs);
+  report.metric("interpenetration_worst_mm", p.worstMm);
+  report.metric("interpenetration_worst_excess_mm", p.worstExcessMm);
+  report.metric("rules_hold", {{"outside", o.holds}, {"folds", rules.folds.holds}, {"symmetry", rules.symmetry.holds},
+                               {"straightness", rules.straightness.holds}, {"interpenetration", p.holds}});
+  return rules;
 }
 
 void renderPng(const ReferenceAnatomy& anatomy, const std::vector<MatrixX3d>& tissueVertices, const TriMesh& skin,
@@ -289,21 +264,11 @@ void runTransfer(const TransferOptions& o) {
     return nlohmann::json{f.solves[0].iterations, f.solves[1].iterations, f.solves[2].iterations};
   };
   report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
-  const transfer::JacobianSummary jacobian = transfer::jacobianDeterminant(result.finalField);
-  report.metric("jacobian_min", jacobian.minimum);
-  report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
-  report.metric("jacobian_min_at", {jacobian.whereMinimum.x(), jacobian.whereMinimum.y(), jacobian.whereMinimum.z()});
-  report.metric("jacobian_interior_min", jacobian.interiorMinimum);
-  report.metric("jacobian_interior_min_at",
-                {jacobian.whereInteriorMinimum.x(), jacobian.whereInteriorMinimum.y(), jacobian.whereInteriorMinimum.z()});
-  report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
   report.metric("unfold_passes", result.finalField.unfoldPasses);
   report.metric("unfold_released_cells", result.finalField.releasedCells);
-  TriMesh body = reference.skin;
-  body.V = registered.V;
-  reportInside(into.referenceBody, into.eroded ? meshing::bodySignedDistance(body) : into.erodedBody, reference, body,
-               result, o.voxelSize, report);
-  reportBones(reference, result, report);
+  // The registered skin's body: the eroded one is that unless fat was eroded.
+  const transfer::AnatomyRules rules = reportRules(
+      reference, into, into.eroded ? meshing::bodySignedDistance(into.anatomy.skin) : into.erodedBody, o.voxelSize, report);
   endStage("checks");
 
   const ReferenceAnatomy& out = into.anatomy;
@@ -325,8 +290,8 @@ void runTransfer(const TransferOptions& o) {
   endStage("writing");
   std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
             << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
-            << result.boneGroups.size() << " bone groups, Jacobian min " << jacobian.minimum << ", "
-            << report.json()["metrics"]["pushed_out_vertices"].get<long>() << " tissue vertices pushed out of the skin\n";
+            << result.boneGroups.size() << " bone groups, Jacobian min " << rules.folds.jacobian.minimum << ", "
+            << rules.outside.pushedOut << " tissue vertices pushed out of the skin\n";
   o.common.finish(report);
 }
 
