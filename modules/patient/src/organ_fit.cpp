@@ -62,7 +62,9 @@ OrganFit fitOrganToLabel(const TriMesh& templateSurface, const LabelMap& labels,
     out.meanErrorPerRound.push_back(r.result.icpErrors.mean());
   }
   const fit::FitRound& last = rounds.back();
-  out.surface = tetBoundarySurface(last.result.V, last.rest.T);
+  out.tets.V = last.result.V;
+  out.tets.T = last.rest.T;
+  out.surface = tetBoundarySurface(out.tets.V, out.tets.T);
   out.errorAfter = last.result.icpErrors;
   out.carriedTemplate = fit::carriedSurface(templateSurface, rounds);
   return out;

@@ -27,6 +27,9 @@ struct OrganFitOptions {
 struct OrganFit {
   TriMesh surface;           // the fitted boundary (after refits the last round's), mm LPS, closed
   TriMesh carriedTemplate;   // the template's own triangles carried through every round
+  // The last round's fitted tet mesh (V #V by 3 fitted positions, mm LPS; T #T by 4, positively oriented):
+  // `surface` is its boundary. Organs that touch are separated on it (organ_separation.h).
+  TetMesh tets;
   MatrixX3d markers;         // #M by 3 ICP markers on the label's boundary
   Eigen::VectorXd errorBefore, errorAfter;  // #M marker-to-surface distances of the placed and fitted organ, mm
   std::vector<long> tetsPerRound;
