@@ -89,12 +89,12 @@ void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
   viz::writeSurfacesPng(layers, path, {});
 }
 
-// The completed body inside its translucent skin, the scan's own skin over it: where the patient ends and
-// the reference goes on.
-void renderCompletionPng(const patient::ReferenceCompletion& c, const ReferenceAnatomy& scan, const std::string& path) {
+// The whole model inside its translucent skin, the scan's own skin over it: where the patient ends and the
+// reference goes on.
+void renderCompletionPng(const ReferenceAnatomy& whole, const ReferenceAnatomy& scan, const std::string& path) {
   std::vector<viz::SurfaceLayer> layers;
-  for (const ReferenceTissue& t : c.anatomy.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
-  layers.push_back({&c.anatomy.skin, kSkinColour, 0.15});
+  for (const ReferenceTissue& t : whole.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
+  layers.push_back({&whole.skin, kSkinColour, 0.15});
   layers.push_back({&scan.skin, viz::Rgb{{90, 160, 230}}, 0.35});
   viz::writeSurfacesPng(layers, path, {});
 }
@@ -166,20 +166,55 @@ ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
   return patient::buildFullBodyReference(sources, skeleton).anatomy;
 }
 
-// DIR/completed/: the full-body reference completed into the patient (a reference folder), its skin with
-// the fat and the vertices the scan's skin pulled.
-void writeCompletion(const patient::ReferenceCompletion& c, const std::string& dir, io::Report& report) {
-  io::writeReferenceAnatomy(dir + "/completed", c.anatomy, {});
+// The completed skin with the fat and the vertices the scan's skin pulled; how the reference's bones met
+// the patient's labels.
+void writeCompletion(const patient::ReferenceCompletion& c, const patient::WholeModel& whole, const std::string& dir,
+                     io::Report& report) {
   TriMesh skin = c.anatomy.skin;
   skin.vertexAttributes.real["fat_thickness"] = c.fatThickness;
   Eigen::VectorXi pulled(skin.V.rows());
   for (Eigen::Index v = 0; v < pulled.size(); ++v) pulled[v] = c.pulled[std::size_t(v)];
   skin.vertexAttributes.integer["pulled_by_scan"] = pulled;
   io::writeTriMesh(dir + "/completed_skin.vtp", skin);
+  nlohmann::json groups = nlohmann::json::object(), bones = nlohmann::json::object();
+  for (const transfer::BoneGroupMap& g : c.transfer.transferred.boneGroups)
+    if (!std::isnan(g.targetRmsBeforeMm))
+      groups[g.group] = {{"labels_rms_before_mm", g.targetRmsBeforeMm}, {"labels_rms_after_mm", g.targetRmsAfterMm}};
+  for (const patient::RegisteredBone& b : whole.bones)
+    bones[b.tissue] = {{"label", b.label},
+                       {"vertices", b.registration.mesh.V.rows()},
+                       {"label_boundary_to_bone_mean_mm", b.registration.boundaryToMeshMeanMm},
+                       {"label_boundary_to_bone_max_mm", b.registration.boundaryToMeshMaxMm}};
   report.metric("completion", {{"tissues", c.anatomy.tissues.size()},
                                {"skin_vertices_pulled_by_scan", pulled.sum()},
                                {"scan_skin_to_completed_mean_mm", c.registration.skinMeanDistance},
-                               {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance}});
+                               {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance},
+                               {"bone_groups_on_labels", groups},
+                               {"bones_on_labels", bones}});
+}
+
+// Seed 000's rules on the whole model, in brief: whether each holds and its worst value and tissue.
+nlohmann::json rulesReport(const transfer::AnatomyRules& r, const ReferenceAnatomy& model) {
+  const auto name = [&](int t) { return t >= 0 ? model.tissues[std::size_t(t)].name : std::string(); };
+  nlohmann::json pairs = nlohmann::json::array();
+  for (std::size_t i = 0; i < std::min<std::size_t>(r.interpenetration.pairs.size(), 10); ++i) {
+    const transfer::Interpenetration& p = r.interpenetration.pairs[i];
+    pairs.push_back({{"tissues", {name(p.a), name(p.b)}},
+                     {"depth_mm", p.depthMm},
+                     {"reference_depth_mm", std::isnan(p.referenceDepthMm) ? nlohmann::json() : nlohmann::json(p.referenceDepthMm)}});
+  }
+  return {{"hold", r.holds()},
+          {"outside", {{"holds", r.outside.holds}, {"vertices", r.outside.vertices}, {"outside", r.outside.outside},
+                       {"at_cut", r.outside.outsideAtCut}, {"worst_mm", r.outside.worstMm},
+                       {"worst_tissue", name(r.outside.worstTissue)}}},
+          {"folds", {{"holds", r.folds.holds}, {"jacobian_min", r.folds.jacobian.minimum},
+                     {"nonpositive_cells", r.folds.jacobian.nonPositiveCells}}},
+          {"symmetry", {{"holds", r.symmetry.holds}, {"worst_excess_mm", r.symmetry.worstExcessMm},
+                        {"worst_group", r.symmetry.worstGroup}}},
+          {"straightness", {{"holds", r.straightness.holds}, {"worst_excess", r.straightness.worstExcess},
+                            {"worst_bone", name(r.straightness.worstTissue)}}},
+          {"interpenetration", {{"holds", r.interpenetration.holds}, {"worst_mm", r.interpenetration.worstMm},
+                                {"worst_excess_mm", r.interpenetration.worstExcessMm}, {"deepest_pairs", pairs}}}};
 }
 
 // The pose asked for (posed world transforms of the rig's joints), or none.
@@ -192,17 +227,20 @@ struct Pose {
 // the rig, each fitted organ's markers and carried template, the posed patient, the report.
 void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p,
                   const std::optional<Pose>& pose, const std::string& dir, io::Report& report) {
-  io::writeReferenceAnatomy(dir + "/anatomy", p.anatomy, {});
-  io::writeAnatomyGlb(dir + "/patient.glb", p.anatomy, {});
+  const ReferenceAnatomy& model = p.whole ? p.whole->anatomy : p.anatomy;
+  io::writeReferenceAnatomy(dir + "/anatomy", model, {});
+  io::writeAnatomyGlb(dir + "/patient.glb", model, {});
+  if (p.whole) io::writeReferenceAnatomy(dir + "/scan_anatomy", p.anatomy, {});
   TriMesh skin = p.anatomy.skin;
   skin.vertexAttributes.real["fat_thickness"] = p.fatThickness;
   io::writeTriMesh(dir + "/skin_fat.vtp", skin);
   io::writeLabelMap(dir + "/tissue_classes.nii.gz", p.tissueClasses);
   viz::writeSliceOverlayPng(scan, p.tissueClasses, dir + "/tissue_classes.png");
   nlohmann::json labelTissues = nlohmann::json::object(), fits = nlohmann::json::object();
-  for (const auto& [label, tissues] : p.labelTissues)
+  for (const auto& [label, tissues] : p.whole ? p.whole->labelTissues : p.labelTissues)
     for (const std::string& t : tissues) labelTissues[label].push_back("anatomy/" + io::tissueFile(t));
-  if (p.completion) writeCompletion(*p.completion, dir, report);
+  if (p.completion) writeCompletion(*p.completion, *p.whole, dir, report);
+  if (p.rules) report.metric("anatomy_rules", rulesReport(*p.rules, model));
   if (p.rig) {
     io::writeAnatomyRig(dir + "/rig", p.rig->rig, p.rig->meshes, {});
     report.metric("hip_joints", {{"left", p.rig->hipLeft}, {"right", p.rig->hipRight}});
@@ -221,13 +259,23 @@ void writeOutputs(const PatientOptions& o, const Image& scan, const patient::Vir
   }
   report.metric("label_tissues", labelTissues);
   report.metric("organ_fits", fits);
-  report.metric("tissues", p.anatomy.tissues.size());
-  report.metric("skin_vertices", p.anatomy.skin.V.rows());
-  report.metric("skin_cut_vertices", p.anatomy.skinCutVertices.size());
+  nlohmann::json separation = nlohmann::json::array();
+  for (const patient::OrganPairSeparation& s : p.organSeparation)
+    if (s.penetratingBefore > 0)
+      separation.push_back({{"organs", {p.fits[s.first].organ, p.fits[s.second].organ}},
+                            {"penetrating_vertices_before", s.penetratingBefore},
+                            {"penetrating_vertices_after", s.penetratingAfter},
+                            {"max_depth_before_mm", s.maxDepthBefore},
+                            {"max_depth_after_mm", s.maxDepthAfter},
+                            {"max_displacement_mm", s.maxDisplacement}});
+  report.metric("organ_separation", separation);
+  report.metric("tissues", model.tissues.size());
+  report.metric("skin_vertices", model.skin.V.rows());
+  report.metric("scan_skin_cut_vertices", p.anatomy.skinCutVertices.size());
   report.metric("fat_thickness_mm", {{"mean", p.fatThickness.mean()}, {"max", p.fatThickness.maxCoeff()}});
   for (const auto& [stage, seconds] : p.stageSeconds) report.stage(stage, seconds);
-  if (o.png) renderPng(p.anatomy, dir + "/patient.png");
-  if (o.png && p.completion) renderCompletionPng(*p.completion, p.anatomy, dir + "/completed.png");
+  if (o.png) renderPng(model, dir + "/patient.png");
+  if (o.png && p.whole) renderCompletionPng(p.whole->anatomy, p.anatomy, dir + "/completed.png");
   if (pose) writePosed(o, p, pose->posed, pose->world, dir + "/posed", report);
   report.write(dir + "/report.json", {});
 }
@@ -295,17 +343,26 @@ void runPatient(const PatientOptions& o) {
   fs::rename(staged, o.out);
   if (!o.common.report.empty()) o.common.finish(report);
 
+  const ReferenceAnatomy& model = p.whole ? p.whole->anatomy : p.anatomy;
   std::cout << std::fixed << std::setprecision(2) << "\nSummary\n  " << o.out << "/anatomy: "
-            << p.anatomy.tissues.size() << " tissues in the skin (" << p.anatomy.skin.V.rows()
-            << " vertices, subcutaneous fat " << p.fatThickness.mean() << " mm on average, skin_fat.vtp); patient.glb\n";
+            << model.tissues.size() << " tissues in the skin (" << model.skin.V.rows() << " vertices); patient.glb\n"
+            << "  the scan's skin: subcutaneous fat " << p.fatThickness.mean() << " mm on average (skin_fat.vtp)\n";
   for (const patient::FittedOrgan& f : p.fits)
     std::cout << "  " << f.organ << ": " << f.templateSource << " fitted to " << f.fit.markers.rows()
               << " markers on its label, error " << f.fit.errorBefore.mean() << " -> " << f.fit.errorAfter.mean()
               << " mm (mean)\n";
-  if (p.completion)
-    std::cout << "  completed/: the full-body reference completed into the patient (" << p.completion->anatomy.tissues.size()
-              << " tissues; the scan's skin " << p.completion->registration.skinMeanDistance
-              << " mm from the completed skin on average)\n";
+  if (p.whole) {
+    std::cout << "  beyond the scan the full-body reference, completed into the patient (the scan's skin "
+              << p.completion->registration.skinMeanDistance << " mm from the completed skin on average)\n";
+    for (const patient::RegisteredBone& b : p.whole->bones)
+      std::cout << "  " << b.tissue << ": the reference's bone on label " << b.label << ", its boundary "
+                << b.registration.boundaryToMeshMeanMm << " mm from the bone on average\n";
+    const transfer::AnatomyRules& r = *p.rules;
+    std::cout << "  seed 000's rules " << (r.holds() ? "hold" : "do not all hold") << ": " << r.outside.outside
+              << " tissue vertices outside the skin (" << r.outside.outsideAtCut << " through the scan's cut), "
+              << r.folds.jacobian.nonPositiveCells << " folded cells, deepest interpenetration beyond the reference's "
+              << r.interpenetration.worstExcessMm << " mm (report.json anatomy_rules)\n";
+  }
   if (p.rig)
     std::cout << "  rig/: " << p.rig->rig.tets.T.rows() << " tets, joints " << p.rig->hipLeft << " and "
               << p.rig->hipRight << " turn the hips (vesalius pose --anatomy " << o.out << "/rig)\n";
@@ -351,18 +408,18 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd.add_flag("--png", o.png,
-               "Also write patient.png (the anatomy inside the translucent skin) and completed.png (the completed body, "
+               "Also write patient.png (the model inside the translucent skin) and completed.png (the same with "
                "the scan's skin in blue); needs a display");
   addCommonOptions(cmd, o.common);
 }
 
 const char* kOutputs =
-    "Writes DIR/anatomy/ (skin and every tissue, the format `vesalius transfer` reads), patient.glb (the same for "
-    "any glTF viewer), skin_fat.vtp (fat thickness per skin vertex), tissue_classes.nii.gz and .png, rig/ (what "
-    "`vesalius pose` and vesalius-poser pose), organs/ (markers and fitted templates), completed/ and "
-    "completed_skin.vtp (the full-body reference completed into the patient beyond the scan), with --pose or --motion "
-    "posed/ (the posed model, scan and organ map) and report.json (label_tissues, hip_joints, organ fits, pose "
-    "quality, stage times). "
+    "Writes DIR/anatomy/ (the whole model: the patient's skin, bones and organs inside the scan, the full-body "
+    "reference completed into the patient beyond it; the format `vesalius transfer` reads), patient.glb (the same "
+    "for any glTF viewer), scan_anatomy/ (the model inside the scan alone), skin_fat.vtp (fat thickness per skin "
+    "vertex), completed_skin.vtp, tissue_classes.nii.gz and .png, rig/ (what `vesalius pose` and vesalius-poser "
+    "pose), organs/ (markers and fitted templates), with --pose or --motion posed/ (the posed model, scan and organ "
+    "map) and report.json (label_tissues, hip_joints, organ fits, pose quality, stage times). "
     "docs/virtual-patient.md says what the model holds.";
 
 }  // namespace

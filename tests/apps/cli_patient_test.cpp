@@ -1,8 +1,9 @@
-// `vesalius patient` on the shipped CT: the patient's own anatomy inside the field of view (run as
-// `vesalius demo`, which is `patient` on the shipped CT and its labels). The liver is
-// the SOFA liver template (templates/organs, not made from this scan) fitted to the CT's liver label, and
-// scored against that label; the bones are the labels' own surfaces, scored voxelized on the scan's grid.
-// Without the organ map the model holds the scan's skin and bone class. Bad inputs give one line naming
+// `vesalius patient` on the shipped CT (run as `vesalius demo`, which is `patient` on the shipped CT and its
+// labels): the whole model, the patient's own anatomy inside the field of view and the full-body reference
+// beyond it. The liver is the SOFA liver template (templates/organs, not made from this scan) fitted to the
+// CT's liver label, and scored against that label; the hip bones, sacrum and femurs are OpenSim's meshes
+// brought onto their labels, scored voxelized on the scan's grid. Without the organ map the scan anatomy
+// holds the scan's skin and bone class. Bad inputs give one line naming
 // the file, exit 3 (2 for usage), and no output folder.
 #include "fit_ct_support.h"
 
@@ -11,6 +12,7 @@
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/surface_samples.h"
+#include "vesalius/meshing/winding_mask.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <gtest/gtest.h>
@@ -28,8 +30,9 @@ std::string fresh(const std::string& name) {
   return dir;
 }
 
+// The mesh voxelized by its winding number: the reference's OpenSim bones are not all closed.
 double diceWithLabel(const TriMesh& mesh, const LabelMap& labels, Label id) {
-  const Grid<std::uint8_t> inside = meshing::meshInsideMask(mesh, labels.labels.geometry);
+  const Grid<std::uint8_t> inside = meshing::windingNumberMask(mesh, labels.labels.geometry);
   return segmentation::diceCoefficient(inside, segmentation::maskOf(labels.labels, id));
 }
 
@@ -63,10 +66,12 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   const nlohmann::json& liver = m["organ_fits"]["liver"];
   EXPECT_LT(liver["error_after_mm"]["mean"].get<double>(), 0.5);
   for (const long tets : liver["tets_per_round"].get<std::vector<long>>()) EXPECT_LE(tets, 2 * 5000);
-  const auto tissue = [&](const std::string& name) -> const TriMesh& {
+  // The tissue that represents a label, by the report's label_tissues.
+  const auto tissue = [&](const std::string& label) -> const TriMesh& {
+    const std::string name = fs::path(m["label_tissues"][label][0].get<std::string>()).stem().string();
     for (const ReferenceTissue& t : anatomy.tissues)
-      if (t.name == name) return t.mesh;
-    throw std::runtime_error("no tissue " + name);
+      if (io::tissueFile(t.name) == "tissues/" + name + ".obj") return t.mesh;
+    throw std::runtime_error("no tissue for label " + label);
   };
   const Label liverId = labels.table.resolve("liver");
   const double liverDice = diceWithLabel(tissue("liver"), labels, liverId),
@@ -79,21 +84,25 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
   expectContains(r.out, "Summary");
 
-  // Bones: the labels' own surfaces, voxelized on the scan's grid.
+  // Bones inside the field of view, voxelized on the scan's grid against their labels: the reference's hip
+  // bones, sacrum and femurs brought onto the labels (OpenSim's meshes, not made from this scan), L5 the
+  // label's own surface.
   for (const char* name : {"hip_left", "hip_right", "sacrum", "femur_left", "femur_right", "vertebrae_L5"}) {
     const double dice = diceWithLabel(tissue(name), labels, labels.table.resolve(name));
-    std::cout << name << ": Dice " << dice << '\n';
+    std::cout << name << " (" << m["label_tissues"][name][0].get<std::string>() << "): Dice " << dice << '\n';
     EXPECT_GE(dice, 0.90) << name;
   }
+  EXPECT_EQ(m["label_tissues"]["femur_left"][0], "anatomy/tissues/l_femur.obj");
 
-  // The skin: closed, its cut on the field of view's caps, fat from the forests (none on the cut).
-  const io::TriMeshSummary skin = io::summarize(anatomy.skin);
+  // The scan's skin: closed, its cut on the field of view's caps, fat from the forests (none on the cut).
+  const ReferenceAnatomy scanAnatomy = io::readReferenceAnatomy(out + "/scan_anatomy");
+  const io::TriMeshSummary skin = io::summarize(scanAnatomy.skin);
   EXPECT_TRUE(skin.closed);
-  EXPECT_GT(anatomy.skinCutVertices.size(), 0u);
+  EXPECT_GT(scanAnatomy.skinCutVertices.size(), 0u);
   const TriMesh skinFat = io::readTriMesh(out + "/skin_fat.vtp");
   const Eigen::VectorXd fat = skinFat.vertexAttributes.real.at("fat_thickness");
-  ASSERT_EQ(fat.size(), anatomy.skin.V.rows());
-  for (const int v : anatomy.skinCutVertices) EXPECT_EQ(fat[v], 0.0);
+  ASSERT_EQ(fat.size(), scanAnatomy.skin.V.rows());
+  for (const int v : scanAnatomy.skinCutVertices) EXPECT_EQ(fat[v], 0.0);
   std::cout << "fat thickness: mean " << fat.mean() << " mm, max " << fat.maxCoeff() << " mm\n";
   EXPECT_GT(fat.mean(), 0.0);
   // The whole model for glTF viewers: one node per tissue, the skin last.
@@ -119,12 +128,16 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   for (const char* file : {"posed/anatomy/reference.json", "posed/patient.glb", "posed/tets.vtu", "posed/skeleton.bvh",
                            "posed/scan.nii.gz", "posed/organs.nii.gz", "rig/rig.vtu", "rig/meshes/skin.obj"})
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;
-  // Beyond the field of view, the full-body reference completed into the patient: the scan's skin within a
-  // voxel of the completed skin, on average.
+  // Beyond the field of view, the full-body reference completed into the patient: one model with the
+  // scan's skin within a voxel of its skin, on average, and the reference's bones from head to feet.
   const nlohmann::json& completion = m["completion"];
   std::cout << "completion: " << completion.dump() << '\n';
   EXPECT_LT(completion["scan_skin_to_completed_mean_mm"].get<double>(), voxel);
-  EXPECT_GT(io::readReferenceAnatomy(out + "/completed").tissues.size(), 50u);
+  EXPECT_GT(anatomy.tissues.size(), 50u);
+  for (const char* bone : {"hat_skull", "l_tibia", "r_foot", "humerus_lv"})
+    EXPECT_TRUE(std::any_of(anatomy.tissues.begin(), anatomy.tissues.end(),
+                            [&](const ReferenceTissue& t) { return t.name == bone; }))
+        << bone;
   EXPECT_TRUE(fs::exists(out + "/completed_skin.vtp"));
   const std::string posedAgain = fresh("demo_pose");
   const CommandResult again = runVesalius({"pose", "--anatomy", out + "/rig", "--angles", "femur_left=-30,0,0",
@@ -159,11 +172,27 @@ TEST(CliPatient, PosedByAFrameOfAMotion) {
   }
 }
 
+// Without the organ map: inside the field of view the scan's skin and bone class (scan_anatomy/); the model
+// is the full-body reference completed into the patient, its bones inside its skin.
 TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
   const std::string out = fresh("without_organs");
   const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "none"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const ReferenceAnatomy anatomy = io::readReferenceAnatomy(out + "/anatomy");
+  const ReferenceAnatomy whole = io::readReferenceAnatomy(out + "/anatomy");
+  const Grid<std::uint8_t> wholeBody = meshing::meshInsideMask(whole.skin, io::readScan(kCtScan).geometry);
+  long boneVoxels = 0, boneOutside = 0;
+  for (const ReferenceTissue& t : whole.tissues) {
+    if (t.kind != TissueKind::Bone) continue;
+    const Grid<std::uint8_t> inside = meshing::windingNumberMask(t.mesh, wholeBody.geometry);
+    boneVoxels += segmentation::countVoxels(inside);
+    boneOutside += segmentation::countVoxels(segmentation::maskAndNot(inside, wholeBody));
+  }
+  std::cout << "model: " << whole.tissues.size() << " tissues; bone voxels in the scan outside its skin: "
+            << boneOutside << " of " << boneVoxels << '\n';
+  EXPECT_GT(whole.tissues.size(), 50u);
+  EXPECT_GT(boneVoxels, 0);
+  EXPECT_LT(double(boneOutside), 0.001 * double(boneVoxels));
+  const ReferenceAnatomy anatomy = io::readReferenceAnatomy(out + "/scan_anatomy");
   ASSERT_EQ(anatomy.tissues.size(), 1u);
   EXPECT_EQ(anatomy.tissues[0].name, "bone");
   EXPECT_EQ(anatomy.tissues[0].kind, TissueKind::Bone);

@@ -118,16 +118,42 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
     FittedOrgan fitted{t.organ, t.source,
                        fitOrganToLabel(t.surface, *organs, organs->table.resolve(t.organ), options.organFit,
                                        organsSource, progress)};
-    tissue->mesh = fitted.fit.surface;
     patient.fits.push_back(std::move(fitted));
     clock.end("fit " + t.organ);
   }
+  if (patient.fits.size() > 1) {
+    std::vector<OrganFit*> fitted;
+    for (FittedOrgan& f : patient.fits) fitted.push_back(&f.fit);
+    patient.organSeparation = separateOrgans(fitted, options.organSeparation);
+    clock.end("organ separation");
+  }
+  for (const FittedOrgan& f : patient.fits)
+    for (ReferenceTissue& r : patient.anatomy.tissues)
+      if (r.name == f.organ) r.mesh = f.fit.surface;
   patient.anatomy.validate(scanSource);
 
   if (options.fullBodyReference) {
+    ReferenceCompletionOptions completion = options.completion;
+    if (organs)
+      completion.transfer.transfer.boneTargets =
+          boneGroupTargets(*options.fullBodyReference, *organs, options.boneGroupLabels);
     patient.completion = completeWithReference(patient.anatomy, patient.fatThickness, *options.fullBodyReference,
-                                               options.completion, progress);
+                                               completion, progress);
     clock.end("reference completion");
+    if (progress) progress->begin("whole model", "the reference's bones onto the patient's labels");
+    patient.whole = wholeModel(patient.completion->anatomy, patient.anatomy, organs, options.referenceBoneLabels,
+                               options.boneRefinement, organsSource);
+    patient.whole->anatomy.name = "patient (" + scanSource + ") completed with " + options.fullBodyReference->name;
+    if (progress) progress->end();
+    clock.end("whole model");
+    const TransferIntoBody& t = patient.completion->transfer;
+    transfer::AnatomyRulesOptions rules;
+    rules.referenceSkinDistance = &t.referenceBody.signedDistance;
+    rules.referenceSkinCavities = &t.referenceBody.cavities;
+    rules.deepMm = completion.transfer.voxelSizeMm;
+    patient.rules = transfer::checkAnatomyRules(*options.fullBodyReference, patient.whole->anatomy,
+                                                &t.transferred.finalField, rules);
+    clock.end("anatomy rules");
   }
 
   if (!options.rig) {

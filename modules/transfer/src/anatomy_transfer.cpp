@@ -2,6 +2,7 @@
 #include "vesalius/transfer/anatomy_transfer.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/triangle_tree.h"
 #include "vesalius/transfer/anatomy_checks.h"
 
 #include <chrono>
@@ -169,6 +170,52 @@ InsideSkinWarp bendInside(const MatrixX3d& mapped, const MatrixX3d& rest, const 
   return warpIntoSkin(mapped, [&eroded](const MatrixX3d& P) { return sampleSkinDistances(eroded, P); }, wanted, bend);
 }
 
+// The group's bones at rest as one mesh (#V by 3 over the group's tissues in order).
+TriMesh groupMesh(const BoneGroupMap& group, const ReferenceAnatomy& reference, const std::vector<MatrixX3d>& restBones) {
+  TriMesh mesh;
+  for (const int t : group.tissues) {
+    TriMesh part;
+    part.V = restBones[std::size_t(t)];
+    part.F = reference.tissues[std::size_t(t)].mesh.F;
+    mesh = mesh.V.rows() ? concatenate(mesh, part) : part;
+  }
+  return mesh;
+}
+
+// AnatomyTransferOptions::boneTargets: the group's map refined by ICP to its target points, its attractors
+// (P, Q) weighing `boneTargetAttractorShare` of the points in all.
+void fitGroupToTarget(BoneGroupMap& group, const TriMesh& rest, const MatrixX3d& targets, const MatrixX3d& P,
+                      const MatrixX3d& Q, const Plane& referencePlane, const Plane& targetPlane,
+                      const AnatomyTransferOptions& options) {
+  const Eigen::Index n = targets.rows(), m = P.rows();
+  MatrixX3d from(n + m, 3), to(n + m, 3);
+  from.bottomRows(m) = P;
+  to.topRows(n) = targets;
+  to.bottomRows(m) = Q;
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n + m);
+  weights.tail(m).setConstant(options.boneTargetAttractorShare * double(n) / double(std::max<Eigen::Index>(m, 1)));
+  const auto pair = [&](double& rms) {
+    const std::vector<ClosestPoint> closest = TriangleTree(group.map.apply(rest.V), rest.F).closest(targets);
+    double sum = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const ClosestPoint& c = closest[std::size_t(i)];
+      from.row(i).setZero();
+      for (int k = 0; k < 3; ++k) from.row(i) += c.barycentric[k] * rest.V.row(rest.F(c.face, k));
+      sum += c.squaredDistance;
+    }
+    rms = std::sqrt(sum / double(n));
+  };
+  pair(group.targetRmsBeforeMm);
+  double rms = group.targetRmsBeforeMm;
+  for (int iteration = 0; iteration < options.boneTargetIterations; ++iteration) {
+    group.map = fitGroupMap(group, from, to, weights, referencePlane, targetPlane);
+    const double previous = rms;
+    pair(rms);
+    if (previous - rms < 1e-3 * previous) break;
+  }
+  group.targetRmsAfterMm = rms;
+}
+
 // Step 2: the affine maps of the bone groups, attracted to their interpolated positions.
 // Each bone is attracted by its vertices deep inside the body, where the interpolated field is defined;
 // a bone with fewer than 4 of them (one outside the skin) by all of its vertices.
@@ -192,6 +239,10 @@ void registerBones(const ReferenceAnatomy& reference, const Grid<std::uint8_t>& 
   for (BoneGroupMap& group : groups) {
     const MatrixX3d P = groupVertices(group, attractedRest), Q = groupVertices(group, attractors);
     group.map = fitGroupMapInside(group, P, Q, reference.sagittal, targetPlane, options);
+    const auto target = options.boneTargets.find(group.group);
+    if (target != options.boneTargets.end() && target->second.rows() >= 4)
+      fitGroupToTarget(group, groupMesh(group, reference, restBones), target->second, P, Q, reference.sagittal,
+                       targetPlane, options);
     group.rmsToAttractorMm = std::sqrt((group.map.apply(P) - Q).rowwise().squaredNorm().mean());
     if (options.targetSkinDistance) {
       const MatrixX3d rest = groupVertices(group, restBones);

@@ -7,15 +7,19 @@
 //     0 on the cut, which is not skin.
 //  3. the anatomy inside the field of view: with an organ/bone label map, each label as a closed tissue
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
-//     template fitted by plastic strains to markers on its label (seed 002; organ_fit.h). Without one, the
-//     scan's own bone class as one bone tissue.
+//     template fitted by plastic strains to markers on its label (seed 002; organ_fit.h), the fitted
+//     organs pushed apart where they touch (seed 002 §4.1.4; organ_separation.h). Without one, the scan's
+//     own bone class as one bone tissue.
 //  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
 //     partial skin and transferred into it (reference_completion.h; seed 000): a whole body around the scan.
 //  5. the rig: with an organ map holding the pelvis (hips, sacrum) and the femurs, the rig of the patient's
 //     body and bones that carries the model (patient_rig.h; seed 001); posePatient then poses it.
-// Not yet (docs/virtual-patient.md): the model and the completed body merged into one (inside the field of
-// view the completed body's bones registered onto the patient's labels, seed 000 §8), organs pushed apart
-// where they touch (seed 002 §4.1.4).
+//  6. the whole model (whole_model.h): the completed reference with, inside the field of view, the
+//     patient's bones (the reference's meshes placed on the labels by the transfer's per-bone registration,
+//     seed 000 §8 with the label as target, then refined onto them) and the patient's other tissues;
+//     seed 000's rules measured on it (transfer/anatomy_rules.h).
+// Not yet (docs/virtual-patient.md): the rig carries the anatomy inside the field of view, not the whole
+// model.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -23,9 +27,12 @@
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
 #include "vesalius/patient/organ_fit.h"
+#include "vesalius/patient/organ_separation.h"
 #include "vesalius/patient/patient_rig.h"
 #include "vesalius/patient/reference_completion.h"
 #include "vesalius/patient/scan_anatomy.h"
+#include "vesalius/patient/whole_model.h"
+#include "vesalius/transfer/anatomy_rules.h"
 
 #include <Eigen/Core>
 
@@ -47,12 +54,26 @@ struct OrganTemplate {
 struct VirtualPatientOptions {
   ScanAnatomyOptions surfaces;
   OrganFitOptions organFit;
+  OrganSeparationOptions organSeparation;
   bool rig = true;  // rig the model when the organ map has its bones
   PatientRigOptions rigging;
   // The full-body reference (full_body_reference.h) to complete into the patient beyond the field of view;
   // none: no completion. The caller's, not copied.
   const ReferenceAnatomy* fullBodyReference = nullptr;
   ReferenceCompletionOptions completion;
+  // The whole model (whole_model.h): the reference's bone groups placed on the patient's labels by the
+  // transfer (one map per group, seed 000 §8), then the bones that have a label of their own brought onto
+  // its shape, without an affine step of their own: the group's map keeps them where the muscles and the
+  // bones beyond the scan were carried.
+  std::vector<std::pair<std::string, std::string>> boneGroupLabels = defaultBoneGroupLabels();
+  std::vector<std::pair<std::string, std::string>> referenceBoneLabels = defaultReferenceBoneLabels();
+  BoneOntoLabelOptions boneRefinement = placedBones();
+
+  static BoneOntoLabelOptions placedBones() {
+    BoneOntoLabelOptions o;
+    o.affineTargets = 0;
+    return o;
+  }
 };
 
 struct FittedOrgan {
@@ -61,14 +82,19 @@ struct FittedOrgan {
 };
 
 struct VirtualPatient {
-  ReferenceAnatomy anatomy;      // skin (cut vertices marked) and tissues, mm LPS
+  // Inside the field of view: the scan's skin (cut vertices marked) and the tissues of its labels, mm LPS;
+  // what the rig carries.
+  ReferenceAnatomy anatomy;
   Eigen::VectorXd fatThickness;  // #skin V: subcutaneous fat, mm
   LabelMap tissueClasses;        // the CT's tissue classes, on its grid
   // Each label name of the organ map the model represents, and the tissues (names in anatomy.tissues)
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<FittedOrgan> fits;
+  std::vector<OrganPairSeparation> organSeparation;  // indices into fits; every pair, touching or not
   std::optional<ReferenceCompletion> completion;  // with options.fullBodyReference
+  std::optional<WholeModel> whole;                // with the completion: the whole model
+  std::optional<transfer::AnatomyRules> rules;    // seed 000's rules on the whole model (anatomy_rules.h)
   std::optional<PatientRig> rig;  // none without an organ map holding the pelvis and femurs
   std::string noRigBecause;       // why there is no rig, in the user's words
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran

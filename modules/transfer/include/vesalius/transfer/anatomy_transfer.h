@@ -35,6 +35,8 @@
 #include "vesalius/transfer/displacement_field.h"
 
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,17 @@ struct AnatomyTransferOptions {
   // this many times (DisplacementFieldOptions::unfoldPasses; the skin field, which moves no tissue, keeps
   // field.unfoldPasses).
   int finalUnfoldPasses = 40;
+  // Step 2 with a target for some bone groups (§8's per-bone registration with a patient's segmented bone
+  // as the target, as the virtual patient's bone labels give inside a scan's field of view): group name →
+  // #P by 3 points on that group's bones in the target. Such a group's map, in its class (symmetric, long
+  // bone or affine), is refined from the fit to its attractors by ICP (Besl and McKay 1992): each point
+  // pairs with the closest point of the mapped group, and the map is fitted again to those pairs and, with
+  // `boneTargetAttractorShare` of the points' weight in all, to its attractors, which hold what the points
+  // leave undetermined (a femur cut by the field of view keeps its length). The final field (step 3) then
+  // carries every other tissue with the bones where the target put them.
+  std::map<std::string, MatrixX3d> boneTargets;
+  double boneTargetAttractorShare = 0.1;
+  int boneTargetIterations = 30;
 };
 
 struct BoneGroupMap {
@@ -70,6 +83,10 @@ struct BoneGroupMap {
   AffineMap map;
   InsideSkinWarp bend;          // after the map: what it leaves outside the eroded skin, bent inside (step 2)
   double rmsToAttractorMm = 0;  // RMS distance of the mapped bone to its interpolated position
+  // With a target (AnatomyTransferOptions::boneTargets): the target points' RMS distance to the mapped
+  // group before and after the ICP, mm; NaN without one.
+  double targetRmsBeforeMm = std::numeric_limits<double>::quiet_NaN();
+  double targetRmsAfterMm = std::numeric_limits<double>::quiet_NaN();
   MatrixX3d place(const MatrixX3d& rest) const { return bend.apply(map.apply(rest)); }  // #P by 3 → #P by 3
 };
 
