@@ -454,7 +454,7 @@ void addDemoCommand(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output folder DIR")->capture_default_str();
   addPatientOptions(*cmd, *o);
   cmd->footer(std::string("Example:\n  vesalius demo --out demo-output --force\n"
-                          "Takes about a minute and a half on 2 cores, most of it the liver fit. ") +
+                          "Most of its time goes to the organ fits and the full-body reference's completion. ") +
               kOutputs);
   cmd->callback([o] { runPatient(*o); });
 }

@@ -3,22 +3,23 @@
 // displacement). The virtual patient's model (whole_model.h) holds, inside the scan's field of view, the
 // patient's own bones in the reference's meshes: the pelvis and femurs the rig poses are then the
 // patient's, and beyond the field of view each bone goes on as the reference's.
-//  1. The bone's mesh refined by midpoint subdivision (meshing/midpoint_subdivision.h) until its mean edge is at most `maxEdgeMm`, so that
-//     it can take the label's shape (OpenSim's pelvis has 122 vertices); the subdivided triangles lie on
-//     the reference's, so its shape is unchanged.
+//  1. The bone's mesh refined by midpoint subdivision (meshing/midpoint_subdivision.h) until its mean
+//     edge is at most `maxEdgeMm`, so that it can take the label's shape (OpenSim's pelvis has 122
+//     vertices); the subdivided triangles lie on the reference's, so its shape is unchanged.
 //  2. An affine ICP (fit/affine_icp.h) onto points spread over the label's boundary inside the scan
 //     (meshing::withinScan: where the field of view cuts the bone the cap is the scan's edge, not bone).
 //  3. Non-rigid rounds: each vertex inside the field of view is pulled to its closest point on the label's
 //     boundary, and each boundary point pulls its closest vertex (both ways, so the mesh neither skips a
 //     process of the label nor piles up on one side of it); the pulls are averaged per vertex, continued
 //     harmonically to the vertices beyond the field of view (transfer/surface_harmonic_extension.h: the
-//     bone beyond the scan follows without a step) down to none at `fadeMm` from it, and smoothed over the mesh by `smoothing` Laplacian
-//     passes that halve each round (coarse to fine, as non-rigid ICP anneals its stiffness: Amberg et al.,
-//     "Optimal step nonrigid ICP algorithms for surface registration", CVPR 2007).
+//     bone beyond the scan follows without a step) down to none at `fadeMm` from it, and smoothed over
+//     the mesh by `smoothing` Laplacian passes that halve each round (coarse to fine, as non-rigid ICP
+//     anneals its stiffness: Amberg et al., "Optimal step nonrigid ICP algorithms for surface
+//     registration", CVPR 2007).
 // Deviation: the seed registers each bone by one affine map (rule R1 keeps bones straight); a patient's
 // bone differs from the reference's by more than an affine map, and its own label is the truth inside the
-// field of view, so the rounds follow the label there. Beyond it the harmonic continuation of the moves
-// stays within their range (the maximum principle), so the bone's far end is moved rigidly-ish, not bent.
+// field of view, so the rounds follow the label there. Beyond it the moves fade to none, so a femur's
+// shaft and knee stay where the bone's placement put them.
 #pragma once
 
 #include "vesalius/core/label_map.h"
