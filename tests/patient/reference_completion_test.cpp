@@ -15,9 +15,10 @@
 
 #include "vesalius/core/triangle_tree.h"
 
+#include "full_body_reference.h"
+
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -33,22 +34,7 @@ namespace {
 const std::string kData = VESALIUS_TESTDATA;
 constexpr double kVoxelMm = 3.0;  // the shipped CT's voxel
 
-// The full-body reference, built once per test process by the command that makes it; in a folder of the
-// process's own, as ctest runs the scans' tests at the same time.
-const ReferenceAnatomy& fullBodyReference() {
-  static const ReferenceAnatomy reference = [] {
-    namespace fs = std::filesystem;
-    const fs::path out = fs::path(VESALIUS_TEST_OUTPUT) / ("full-body-" + std::to_string(getpid()));
-    fs::remove_all(out);
-    fs::create_directories(out.parent_path());
-    const std::string command = std::string(VESALIUS_EXE) + " reference full-body --skin " + kData +
-                                "/body/shapes/mh_neutral_body.obj --skeleton " + kData + "/body/default.mhskel --model " +
-                                kData + "/skeleton-opensim/Rajagopal2016.osim --out " + out.string() + " > /dev/null";
-    if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
-    return io::readReferenceAnatomy(out.string());
-  }();
-  return reference;
-}
+using vesalius::test::fullBodyReference;
 
 double percentile(std::vector<double> values, double p) {
   std::sort(values.begin(), values.end());

@@ -14,9 +14,10 @@
 #include "vesalius/meshing/winding_number.h"
 #include "vesalius/transfer/anatomy_transfer.h"
 
+#include "full_body_reference.h"
+
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -35,22 +36,7 @@ namespace {
 
 const std::string kData = VESALIUS_TESTDATA;
 
-// Built once per test process by the command that makes it, in a folder of the process's own.
-const ReferenceAnatomy& fullBodyReference() {
-  static const ReferenceAnatomy reference = [] {
-    namespace fs = std::filesystem;
-    const fs::path out = fs::path(VESALIUS_TEST_OUTPUT) / ("full-body-" + std::to_string(getpid()));
-    fs::remove_all(out);
-    fs::create_directories(out.parent_path());
-    const std::string command = std::string(VESALIUS_EXE) + " reference full-body --skin " + kData +
-                                "/body/shapes/mh_neutral_body.obj --skeleton " + kData + "/body/default.mhskel --model " +
-                                kData + "/skeleton-opensim/Rajagopal2016.osim --out " + out.string() +
-                                " --progress none > /dev/null";
-    if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
-    return io::readReferenceAnatomy(out.string());
-  }();
-  return reference;
-}
+using vesalius::test::fullBodyReference;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,5 +1,7 @@
 #include "vesalius/patient/virtual_patient.h"
 
+#include "labels_with_voxels.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/core/stage_clock.h"
 #include "vesalius/fat/fat_forest.h"
@@ -49,13 +51,9 @@ void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<Or
   if (a.size != b.size || (a.origin - b.origin).norm() > 1e-3 || (a.spacing - b.spacing).norm() > 1e-6 ||
       (a.direction - b.direction).norm() > 1e-6)
     throw BadInput(organsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
-  std::vector<bool> present;
-  for (const Label l : organs.labels.values) {
-    if (std::size_t(l) >= present.size()) present.resize(std::size_t(l) + 1, false);
-    present[std::size_t(l)] = true;
-  }
+  const LabelsWithVoxels present(organs);
   for (const LabelEntry& e : organs.table.entries) {
-    if (e.id == 0 || std::size_t(e.id) >= present.size() || !present[std::size_t(e.id)]) continue;
+    if (!present.has(e.id)) continue;
     ReferenceTissue t{e.name, TissueKind::Other, "", false, {}};
     classifyTissue(t);
     const bool hasTemplate = std::any_of(templates.begin(), templates.end(), [&](const OrganTemplate& o) { return o.organ == e.name; });
@@ -67,16 +65,10 @@ void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<Or
 
 // The bones the skeleton cannot do without (the spine is optional) that `organs` lacks, or has no voxel of.
 std::vector<std::string> missingSkeletonBones(const LabelMap& organs, const posing::SkeletonFromBonesOptions& bones) {
-  std::vector<bool> present;
-  for (const Label l : organs.labels.values) {
-    if (std::size_t(l) >= present.size()) present.resize(std::size_t(l) + 1, false);
-    present[std::size_t(l)] = true;
-  }
+  const LabelsWithVoxels present(organs);
   std::vector<std::string> missing;
-  for (const std::string& name : {bones.hipLeft, bones.hipRight, bones.sacrum, bones.femurLeft, bones.femurRight}) {
-    const LabelEntry* e = organs.table.find(name);
-    if (!e || std::size_t(e->id) >= present.size() || !present[std::size_t(e->id)]) missing.push_back(name);
-  }
+  for (const std::string& name : {bones.hipLeft, bones.hipRight, bones.sacrum, bones.femurLeft, bones.femurRight})
+    if (!present.idOf(name)) missing.push_back(name);
   return missing;
 }
 

@@ -1,5 +1,7 @@
 #include "vesalius/patient/whole_model.h"
 
+#include "labels_with_voxels.h"
+
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/surface_samples.h"
 
@@ -7,30 +9,10 @@
 
 namespace vesalius::patient {
 
-namespace {
-
-// The label's id in `organs` if it has voxels, else 0.
-Label presentLabel(const LabelMap& organs, const std::string& name) {
-  const LabelEntry* e = organs.table.find(name);
-  if (!e || e->id == 0) return 0;
-  return std::find(organs.labels.values.begin(), organs.labels.values.end(), e->id) != organs.labels.values.end() ? e->id : 0;
-}
-
-const ReferenceTissue* findTissue(const ReferenceAnatomy& a, const std::string& name) {
-  const auto t = std::find_if(a.tissues.begin(), a.tissues.end(), [&](const ReferenceTissue& x) { return x.name == name; });
-  return t == a.tissues.end() ? nullptr : &*t;
-}
-
-}  // namespace
-
 std::map<std::string, MatrixX3d> boneGroupTargets(const ReferenceAnatomy& reference, const LabelMap& organs,
                                                   const std::vector<std::pair<std::string, std::string>>& groupLabels,
                                                   int pointsPerGroup) {
-  std::vector<char> present;
-  for (const Label l : organs.labels.values) {
-    if (std::size_t(l) >= present.size()) present.resize(std::size_t(l) + 1, 0);
-    present[std::size_t(l)] = 1;
-  }
+  const LabelsWithVoxels present(organs);
   std::map<std::string, std::vector<Label>> groups;
   for (const auto& [group, label] : groupLabels) {
     if (std::none_of(reference.tissues.begin(), reference.tissues.end(),
@@ -39,8 +21,7 @@ std::map<std::string, MatrixX3d> boneGroupTargets(const ReferenceAnatomy& refere
     const bool prefix = !label.empty() && label.back() == '*';
     const std::string stem = prefix ? label.substr(0, label.size() - 1) : label;
     for (const LabelEntry& e : organs.table.entries)
-      if (e.id != 0 && std::size_t(e.id) < present.size() && present[std::size_t(e.id)] &&
-          (prefix ? e.name.rfind(stem, 0) == 0 : e.name == stem))
+      if (present.has(e.id) && (prefix ? e.name.rfind(stem, 0) == 0 : e.name == stem))
         groups[group].push_back(e.id);
   }
   std::map<std::string, MatrixX3d> targets;
@@ -62,9 +43,10 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
   WholeModel model;
   model.anatomy = completed;
   if (!organs) return model;
+  const LabelsWithVoxels present(*organs);
   std::vector<std::string> represented;
   for (const auto& [tissueName, label] : boneLabels) {
-    const Label id = presentLabel(*organs, label);
+    const Label id = present.idOf(label);
     const auto t = std::find_if(model.anatomy.tissues.begin(), model.anatomy.tissues.end(),
                                 [&](const ReferenceTissue& x) { return x.name == tissueName; });
     if (!id || t == model.anatomy.tissues.end()) continue;
