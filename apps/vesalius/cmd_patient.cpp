@@ -17,6 +17,7 @@
 #include "vesalius/patient/virtual_patient.h"
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/rig_poser.h"
+#include "vesalius/posing/skeleton_from_bone_meshes.h"
 #include "vesalius/viz/slice_overlay.h"
 #include "vesalius/viz/surface_render.h"
 
@@ -38,6 +39,8 @@ struct PatientOptions {
   std::string reference;     // a full-body reference folder; empty: built from the shipped sources
   bool complete = true;      // complete the full-body reference into the patient
   bool png = false;
+  long rigTets = 0;        // 0: the rig's own default
+  double rigVoxelSize = 0;  // 0: the rig's own default
   patient::VirtualPatientOptions pipeline;
   patient::PatientPoseOptions posing;
   CommonOptions common;
@@ -124,7 +127,7 @@ nlohmann::json qualityReport(const patient::PosedPatient& posed) {
 void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const patient::PosedPatient& posed,
                 const std::vector<Eigen::Isometry3d>& world, const std::string& dir, io::Report& report) {
   fs::create_directories(dir);
-  const ReferenceAnatomy anatomy = posedAnatomy(p.anatomy, posed);
+  const ReferenceAnatomy anatomy = posedAnatomy(p.model(), posed);
   io::writeReferenceAnatomy(dir + "/anatomy", anatomy, {});
   io::writeAnatomyGlb(dir + "/patient.glb", anatomy, {});
   TetMesh tets = p.rig->rig.tets;
@@ -141,12 +144,14 @@ void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const
   report.metric("pose", pose);
 }
 
-// --pose's syntax and joint names, before the work: the rig's joints are the pelvis, the femurs and the
+// --pose's syntax and joint names, before the work: the whole model's rig has OpenSim's bodies
+// (posing/skeleton_from_bone_meshes.h); without the reference, the rig has the pelvis, the femurs and the
 // lumbar vertebrae of the organ map (posing/skeleton_from_bones.h).
 void checkPoseJoints(const PatientOptions& o) {
   const posing::SkeletonFromBonesOptions& bones = o.pipeline.rigging.bones;
   std::vector<std::string> joints{"pelvis", bones.femurLeft, bones.femurRight};
   joints.insert(joints.end(), bones.spine.begin(), bones.spine.end());
+  if (o.complete) joints = posing::meshSkeletonJoints();
   for (const posing::JointAngle& a : posing::parseJointAngles(o.pose))
     if (std::find(joints.begin(), joints.end(), a.joint) == joints.end()) {
       std::string list;
@@ -227,7 +232,7 @@ struct Pose {
 // the rig, each fitted organ's markers and carried template, the posed patient, the report.
 void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p,
                   const std::optional<Pose>& pose, const std::string& dir, io::Report& report) {
-  const ReferenceAnatomy& model = p.whole ? p.whole->anatomy : p.anatomy;
+  const ReferenceAnatomy& model = p.model();
   io::writeReferenceAnatomy(dir + "/anatomy", model, {});
   io::writeAnatomyGlb(dir + "/patient.glb", model, {});
   if (p.whole) io::writeReferenceAnatomy(dir + "/scan_anatomy", p.anatomy, {});
@@ -315,6 +320,10 @@ void runPatient(const PatientOptions& o) {
   }
   std::optional<ReferenceAnatomy> reference;
   patient::VirtualPatientOptions pipeline = o.pipeline;
+  for (rigging::RigOptions* rig : {&pipeline.rigging.modelRig, &pipeline.rigging.rig}) {
+    if (o.rigTets > 0) rig->targetTets = o.rigTets;
+    if (o.rigVoxelSize > 0) rig->voxelSize = o.rigVoxelSize;
+  }
   if (o.complete) {
     progress.begin("reference", "the full-body reference");
     reference = fullBodyReference(o);
@@ -343,7 +352,7 @@ void runPatient(const PatientOptions& o) {
   fs::rename(staged, o.out);
   if (!o.common.report.empty()) o.common.finish(report);
 
-  const ReferenceAnatomy& model = p.whole ? p.whole->anatomy : p.anatomy;
+  const ReferenceAnatomy& model = p.model();
   std::cout << std::fixed << std::setprecision(2) << "\nSummary\n  " << o.out << "/anatomy: "
             << model.tissues.size() << " tissues in the skin (" << model.skin.V.rows() << " vertices); patient.glb\n"
             << "  the scan's skin: subcutaneous fat " << p.fatThickness.mean() << " mm on average (skin_fat.vtp)\n";
@@ -394,19 +403,20 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
                  "full-body`); default: built from the shipped MakeHuman body and OpenSim model");
   cmd.add_flag("!--no-reference", o.complete, "Do not complete the full-body reference into the patient");
   cmd.add_option("--pose", o.pose,
-                 "Also pose the patient by joint angles in degrees, e.g. 'femur_left=-30,0,0; femur_right=-30,0,0' "
-                 "(both hips flexed 30 degrees); the joints are pelvis, femur_left, femur_right, vertebrae_L5 upward");
+                 "Also pose the patient by joint angles in degrees, e.g. 'femur_l=-30,0,0; femur_r=-30,0,0' (both hips "
+                 "flexed 30 degrees); the joints are OpenSim's: pelvis, femur_l, tibia_l, talus_l, torso, humerus_l, "
+                 "ulna_l, hand_l and the same with _r (with --no-reference: pelvis, femur_left, femur_right, "
+                 "vertebrae_L5 upward)");
   cmd.add_option("--motion", o.motion, "Or pose it by a frame of a BVH motion (CMU names or the rig's own)");
   cmd.add_option("--frame", o.frame, "The frame of --motion")->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd.add_option("--method", o.posing.method, "Skinning of the pose: cor (centres of rotation), dqs, lbs or fem")
       ->capture_default_str();
-  cmd.add_option("--rig-tets", o.pipeline.rigging.rig.targetTets, "About this many tets in the rig")
-      ->check(CLI::Range(2000L, 2000000L))
-      ->capture_default_str();
-  cmd.add_option("--rig-voxel-size", o.pipeline.rigging.rig.voxelSize,
-                 "Voxels of the body and bones the rig is meshed from, mm (the scan's own if coarser)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  cmd.add_option("--rig-tets", o.rigTets, "About this many tets in the rig (default 20000)")
+      ->check(CLI::Range(2000L, 2000000L));
+  cmd.add_option("--rig-voxel-size", o.rigVoxelSize,
+                 "Voxels of the body and bones the rig is meshed from, mm (default 8 for the whole model, 6 with "
+                 "--no-reference, where the scan's own are used if coarser)")
+      ->check(CLI::PositiveNumber);
   cmd.add_flag("--png", o.png,
                "Also write patient.png (the model inside the translucent skin) and completed.png (the same with "
                "the scan's skin in blue); needs a display");
@@ -435,7 +445,7 @@ void addPatientCommand(CLI::App& app) {
   addPatientOptions(*cmd, *o);
   cmd->footer(std::string("Example:\n"
                           "  vesalius patient --scan ct.nii.gz --organs seg.nii.gz --organ-table labels_total_v1.tsv "
-                          "--out patient --pose 'femur_left=-30,0,0; femur_right=-30,0,0'\n") +
+                          "--out patient --pose 'femur_l=-30,0,0; femur_r=-30,0,0'\n") +
               kOutputs);
   cmd->callback([o] { runPatient(*o); });
 }

@@ -45,7 +45,7 @@ double boundaryDistance(const TriMesh& mesh, const LabelMap& labels, Label id) {
 TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   const std::string out = fresh("demo");
   const CommandResult r =
-      runVesalius({"demo", "--out", out, "--progress", "none", "--pose", "femur_left=-30,0,0; femur_right=-30,0,0"});
+      runVesalius({"demo", "--out", out, "--progress", "none", "--pose", "femur_l=-30,0,0; femur_r=-30,0,0"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::cout << r.out;
   const nlohmann::json report = readJson(out + "/report.json");
@@ -117,9 +117,11 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     EXPECT_TRUE(found) << stage;
   }
 
-  // Posable: the hips' joints named, the rig posed by `vesalius pose`, the posed model as seed 001 claims.
-  EXPECT_EQ(m["hip_joints"]["left"], "femur_left");
-  EXPECT_EQ(m["hip_joints"]["right"], "femur_right");
+  // Posable: the whole model's rig, its hips' joints named (OpenSim's bodies), the rig posed by `vesalius
+  // pose`, the posed model as seed 001 claims.
+  EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
+  EXPECT_EQ(m["hip_joints"]["right"], "femur_r");
+  EXPECT_EQ(m["rig"]["joints"].get<int>(), 14);
   const nlohmann::json& pose = m["pose"];
   std::cout << "posed: " << pose.dump() << '\n';
   EXPECT_EQ(pose["inverted_tets"].get<long>(), 0);
@@ -140,14 +142,40 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
         << bone;
   EXPECT_TRUE(fs::exists(out + "/completed_skin.vtp"));
   const std::string posedAgain = fresh("demo_pose");
-  const CommandResult again = runVesalius({"pose", "--anatomy", out + "/rig", "--angles", "femur_left=-30,0,0",
+  const CommandResult again = runVesalius({"pose", "--anatomy", out + "/rig", "--angles", "femur_l=-30,0,0",
                                            "--method", "cor", "--out", posedAgain, "--progress", "none"});
   EXPECT_EQ(again.exitCode, 0) << again.err;
   EXPECT_TRUE(fs::exists(posedAgain + "/liver.obj"));
+  EXPECT_TRUE(fs::exists(posedAgain + "/hat_skull.obj"));
+  // The posed scan follows the model: the re-posed femur labels against the posed femurs, voxelized.
+  const LabelMap posedOrgans = io::readLabelMap(out + "/posed/organs.nii.gz", kCtLabelTable);
+  const ReferenceAnatomy posedModel = io::readReferenceAnatomy(out + "/posed/anatomy");
+  for (const auto& [label, bone] : {std::pair{"femur_left", "l_femur"}, std::pair{"femur_right", "r_femur"}}) {
+    const auto t = std::find_if(posedModel.tissues.begin(), posedModel.tissues.end(),
+                                [&](const ReferenceTissue& x) { return x.name == bone; });
+    ASSERT_NE(t, posedModel.tissues.end()) << bone;
+    const double dice = diceWithLabel(t->mesh, posedOrgans, posedOrgans.table.resolve(label));
+    std::cout << label << ": Dice of the re-posed label with the posed " << bone << " " << dice << '\n';
+    EXPECT_GE(dice, 0.90) << label;
+  }
+  // Frame 400 of the shipped CMU walk on the whole model's rig (CMU's names onto OpenSim's bodies): the
+  // skin's volume within 1 % and no tissue vertex left outside. Its inverted tets (the left elbow flexed
+  // sharply) are printed, not asserted: docs/virtual-patient.md, Not yet.
+  const std::string walk = fresh("demo_frame_400");
+  const CommandResult frame = runVesalius({"pose", "--anatomy", out + "/rig", "--motion",
+                                           std::string(VESALIUS_TESTDATA) + "/motion/01_01.bvh", "--frame", "400",
+                                           "--method", "cor", "--quality-only", "--out", walk, "--progress", "none",
+                                           "--report", walk + "/report.json"});
+  ASSERT_EQ(frame.exitCode, 0) << frame.err;
+  const nlohmann::json& q = readJson(walk + "/report.json")["metrics"];
+  std::cout << "whole model, frame 400: " << q.dump() << '\n';
+  EXPECT_LT(std::abs(q["worst_skin_volume_change_pct"].get<double>()), 1.0);
+  EXPECT_EQ(q["max_tissue_vertices_left_outside"].get<long>(), 0);
 }
 
-// Frame 400 of the shipped CMU motion (subject 1, trial 1) retargeted onto the patient's rig: hips and
-// lower back driven. No organ templates and no completion, so the run is the rig and the pose.
+// Frame 400 of the shipped CMU motion (subject 1, trial 1) retargeted onto the rig without the reference
+// (the scan's bone labels): hips and lower back driven. No organ templates and no completion, so the run
+// is the rig and the pose.
 TEST(CliPatient, PosedByAFrameOfAMotion) {
   const std::string out = fresh("motion"), noTemplates = fresh("no_templates");
   fs::create_directories(noTemplates);
@@ -173,7 +201,7 @@ TEST(CliPatient, PosedByAFrameOfAMotion) {
 }
 
 // Without the organ map: inside the field of view the scan's skin and bone class (scan_anatomy/); the model
-// is the full-body reference completed into the patient, its bones inside its skin.
+// is the full-body reference completed into the patient, its bones inside its skin, and rigged.
 TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
   const std::string out = fresh("without_organs");
   const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "none"});
@@ -192,6 +220,12 @@ TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
   EXPECT_GT(whole.tissues.size(), 50u);
   EXPECT_GT(boneVoxels, 0);
   EXPECT_LT(double(boneOutside), 0.001 * double(boneVoxels));
+  // Posable without labels: the whole model's rig, from its own bones.
+  const nlohmann::json& m = readJson(out + "/report.json")["metrics"];
+  std::cout << "rig: " << m["rig"].dump() << '\n';
+  EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
+  EXPECT_EQ(m["rig"]["joints"].get<int>(), 14);
+  EXPECT_TRUE(fs::exists(out + "/rig/rig.vtu"));
   const ReferenceAnatomy anatomy = io::readReferenceAnatomy(out + "/scan_anatomy");
   ASSERT_EQ(anatomy.tissues.size(), 1u);
   EXPECT_EQ(anatomy.tissues[0].name, "bone");
@@ -236,14 +270,17 @@ TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
   expectRefused({"patient", "--scan", kCtScan, "--organs", kCtLabels, "--organ-table", table, "--out", out,
                  "--progress", "none"},
                 3, kCtLabels, out);
-  // A pose without a rig: the upper-abdomen labels have no pelvis or femurs.
+  // A pose without a rig: without the reference the rig needs the labels' pelvis and femurs, which the
+  // upper-abdomen labels do not have.
   const std::string dir = std::string(VESALIUS_TESTDATA) + "/ct-abdomen-pelvis/";
   expectRefused({"patient", "--scan", dir + "example_ct_sm.nii.gz", "--organs", dir + "example_seg.nii.gz",
-                 "--organ-table", dir + "labels_total_v2.tsv", "--pose", "femur_left=-30,0,0", "--out", out,
-                 "--progress", "none"},
+                 "--organ-table", dir + "labels_total_v2.tsv", "--no-reference", "--pose", "femur_left=-30,0,0",
+                 "--out", out, "--progress", "none"},
                 3, dir + "example_seg.nii.gz", out);
   // A pose that is not joint angles, or of a joint the rig does not have, before any work.
-  expectRefused({"patient", "--scan", kCtScan, "--pose", "femur_left=-30", "--out", out, "--progress", "none"}, 2,
+  expectRefused({"patient", "--scan", kCtScan, "--pose", "femur_l=-30", "--out", out, "--progress", "none"}, 2,
+                "femur_l", out);
+  expectRefused({"patient", "--scan", kCtScan, "--pose", "femur_left=-30,0,0", "--out", out, "--progress", "none"}, 2,
                 "femur_left", out);
   expectRefused({"patient", "--scan", kCtScan, "--pose", "upperleg01.L=-30,0,0", "--out", out, "--progress", "none"},
                 2, "upperleg01.L", out);

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   const double baseline = run("scan only (baseline)", scan, work, 0);
   run("with organs", organs, work, baseline);
   std::vector<std::string> flexed = organs;
-  flexed.insert(flexed.end(), {"--pose", "femur_left=-30,0,0; femur_right=-30,0,0"});
+  flexed.insert(flexed.end(), {"--pose", "femur_l=-30,0,0; femur_r=-30,0,0"});
   run("with organs, hips flexed 30", flexed, work, baseline);
   std::vector<std::string> motion = organs;
   motion.insert(motion.end(), {"--motion", std::string(VESALIUS_TESTDATA) + "/motion/01_01.bvh", "--frame", "400"});

@@ -1,12 +1,15 @@
 // Joint-angle poses (joint_angles.h): parsing and its errors, and the pose they give.
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/joint_map.h"
+#include "vesalius/posing/skeleton_from_bone_meshes.h"
 
 #include "vesalius/core/error.h"
 
 #include "motion_test_support.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 using namespace vesalius;
 
@@ -89,6 +92,20 @@ TEST(JointMap, DefaultCmuMapNamesJointsOfBothSkeletons) {
     EXPECT_GE(test::cmuMotion().skeleton.find(from), 0) << from;
     EXPECT_GE(test::makeHumanSkeletonLps().find(to), 0) << to;
   }
+}
+
+// The skeleton of bone meshes (OpenSim's bodies): every one of its joints driven by a CMU joint, and the
+// default map for a motion onto it.
+TEST(JointMap, CmuOntoBoneMeshSkeletonDrivesEveryJoint) {
+  const std::vector<std::string> joints = posing::meshSkeletonJoints();
+  ASSERT_EQ(joints.size(), 14u);
+  Skeleton target;
+  for (const std::string& name : joints) target.joints.push_back({name, name == "pelvis" ? -1 : 0});
+  const posing::JointMap map = posing::defaultJointMap(test::cmuMotion().skeleton, target);
+  EXPECT_EQ(map.pairs.size(), joints.size());
+  for (const std::string& joint : joints)
+    EXPECT_TRUE(std::any_of(map.pairs.begin(), map.pairs.end(), [&](const auto& p) { return p.second == joint; })) << joint;
+  for (const auto& [from, to] : map.pairs) EXPECT_GE(test::cmuMotion().skeleton.find(from), 0) << from;
 }
 
 }  // namespace

@@ -160,6 +160,14 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
   // Smoothing can pull the two sides of a thin part through each other (the test CT's left hip bone at
   // 20 iterations); TetGen refuses such surfaces. The smoothing is halved until the surface is clean; the
   // volume offset is then kept wherever it crosses nothing.
+  // Decimation that keeps the topology can still pinch an edge into four triangles (a hand's small bones
+  // at 6 mm voxels), which TetGen refuses as well: such a surface is not clean either, and one that stays
+  // pinched without smoothing is kept undecimated.
+  const EdgeCounts contourEdges = countEdges(io::fromPolyData(contoured, "label surface").F);
+  const auto pinched = [&](const TriMesh& m) {
+    const EdgeCounts e = countEdges(m.F);
+    return e.boundary > contourEdges.boundary || e.nonManifold > contourEdges.nonManifold;
+  };
   SurfaceOptions attempt = options;
   TriMesh mesh;
   for (;;) {
@@ -168,7 +176,11 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
       if (options.preserveVolume) detail::restoreVolume(mesh, voxelVolume, maxOffset);
       break;
     }
-    const bool clean = !crosses(mesh);
+    if (attempt.smoothingIterations == 0 && attempt.targetFaces > 0 && pinched(mesh)) {
+      attempt.targetFaces = 0;
+      mesh = smoothedSurface(contoured, attempt);
+    }
+    const bool clean = !crosses(mesh) && !pinched(mesh);
     if (clean || attempt.smoothingIterations == 0) {
       TriMesh offset = mesh;
       if (clean && options.preserveVolume && detail::restoreVolume(offset, voxelVolume, maxOffset) &&

@@ -3,6 +3,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/posing/posed_volume.h"
 #include "vesalius/posing/rig_poser.h"
+#include "vesalius/rigging/body_rig.h"
 
 #include <algorithm>
 
@@ -34,20 +35,39 @@ LabelMap rigLabels(const LabelMap& tissueClasses, const LabelMap& organs, const 
   return map;
 }
 
-// The scan's grid grown (same spacing and axes) to hold every posed tet vertex: a flexed thigh leaves the
-// field of view of a scan that ends below the hips.
-GridGeometry gridHolding(const GridGeometry& scan, const MatrixX3d& posed) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = (scan.size - Eigen::Vector3i::Ones()).cast<double>();
-  for (Eigen::Index v = 0; v < posed.rows(); ++v) {
-    const Eigen::Vector3d index = scan.worldToIndex(posed.row(v).transpose());
-    lo = lo.cwiseMin(index);
-    hi = hi.cwiseMax(index);
+// The scan's grid grown (same spacing and axes) to hold the posed vertices of every tet with a vertex
+// inside the scan at rest: a flexed thigh leaves the field of view of a scan that ends below the hips.
+// The tets beyond the scan (a whole model's arms and head) carry none of it.
+GridGeometry gridHolding(const GridGeometry& scan, const TetMesh& rest, const MatrixX3d& posed) {
+  const Eigen::Vector3d first = Eigen::Vector3d::Constant(-0.5), last = scan.size.cast<double>().array() - 0.5;
+  std::vector<char> inScan(std::size_t(rest.V.rows()));
+  for (Eigen::Index v = 0; v < rest.V.rows(); ++v) {
+    const Eigen::Vector3d index = scan.worldToIndex(rest.V.row(v).transpose());
+    inScan[std::size_t(v)] = (index.array() >= first.array()).all() && (index.array() <= last.array()).all();
   }
-  const Eigen::Vector3d first = lo.array().floor(), last = hi.array().ceil();
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = (scan.size - Eigen::Vector3i::Ones()).cast<double>();
+  for (Eigen::Index t = 0; t < rest.T.rows(); ++t) {
+    if (!inScan[std::size_t(rest.T(t, 0))] && !inScan[std::size_t(rest.T(t, 1))] && !inScan[std::size_t(rest.T(t, 2))] &&
+        !inScan[std::size_t(rest.T(t, 3))])
+      continue;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d index = scan.worldToIndex(posed.row(rest.T(t, k)).transpose());
+      lo = lo.cwiseMin(index);
+      hi = hi.cwiseMax(index);
+    }
+  }
+  const Eigen::Vector3d from = lo.array().floor(), to = hi.array().ceil();
   GridGeometry grown = scan;
-  grown.origin = scan.indexToWorld(first);
-  grown.size = (last - first).cast<int>() + Eigen::Vector3i::Ones();
+  grown.origin = scan.indexToWorld(from);
+  grown.size = (to - from).cast<int>() + Eigen::Vector3i::Ones();
   return grown;
+}
+
+// The rig's meshes: the model's skin, then its tissues, named by file.
+void carry(PatientRig& rig, const ReferenceAnatomy& model) {
+  rig.meshes.emplace_back("skin.obj", model.skin);
+  for (const ReferenceTissue& t : model.tissues) rig.meshes.emplace_back(t.name + ".obj", t.mesh);
+  for (const auto& [name, mesh] : rig.meshes) rig.rig.meshes.push_back(name);
 }
 
 }  // namespace
@@ -61,11 +81,21 @@ PatientRig rigPatient(const LabelMap& tissueClasses, const LabelMap& organs, con
   PatientRig rig;
   rig.rig = std::move(built.rig);
   rig.stageSeconds = std::move(built.stageSeconds);
-  rig.meshes.emplace_back("skin.obj", anatomy.skin);
-  for (const ReferenceTissue& t : anatomy.tissues) rig.meshes.emplace_back(t.name + ".obj", t.mesh);
-  for (const auto& [name, mesh] : rig.meshes) rig.rig.meshes.push_back(name);
+  carry(rig, anatomy);
   rig.hipLeft = options.bones.femurLeft;
   rig.hipRight = options.bones.femurRight;
+  return rig;
+}
+
+PatientRig rigWholeModel(const ReferenceAnatomy& model, const PatientRigOptions& options, const std::string& source,
+                         Progress* progress) {
+  rigging::BuiltRig built = rigging::rigFromReference(model, options.modelBones, options.modelRig, source, progress);
+  PatientRig rig;
+  rig.rig = std::move(built.rig);
+  rig.stageSeconds = std::move(built.stageSeconds);
+  carry(rig, model);
+  rig.hipLeft = "femur_l";  // OpenSim's body names (skeleton_from_bone_meshes.h)
+  rig.hipRight = "femur_r";
   return rig;
 }
 
@@ -85,7 +115,7 @@ PosedPatient posePatient(const PatientRig& rig, const std::vector<Eigen::Isometr
   posed.quality.skinnedTetVolumeChangePct = 100 * repairs.restore.volumeChangeBefore;
   posed.tissueVerticesInsideAtRest = meter.insideAtRest();
   posing::PosedVolumeOptions grid;
-  grid.outputGeometry = gridHolding(ct.geometry, posed.tets);
+  grid.outputGeometry = gridHolding(ct.geometry, rig.rig.tets, posed.tets);
   posed.scan = posing::poseImage(rig.rig.tets.V, rig.rig.tets.T, posed.tets, ct, grid);
   if (organs) posed.organs = posing::poseLabels(rig.rig.tets.V, rig.rig.tets.T, posed.tets, *organs, grid);
   return posed;

@@ -150,6 +150,9 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
 
   if (!options.rig) {
     patient.noRigBecause = "not asked for";
+  } else if (patient.whole) {
+    patient.rig = rigWholeModel(patient.whole->anatomy, options.rigging, scanSource + " (the whole model)", progress);
+    clock.end("rig");
   } else if (!organs) {
     patient.noRigBecause = "no organ map: the skeleton comes from its bone labels";
   } else if (const std::vector<std::string> missing = missingSkeletonBones(*organs, options.rigging.bones); !missing.empty()) {

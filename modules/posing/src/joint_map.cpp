@@ -57,6 +57,21 @@ JointMap cmuToBoneSkeletonJointMap() {
   return map;
 }
 
+JointMap cmuToMeshSkeletonJointMap() {
+  JointMap map;
+  map.pairs = {{"Hips", "pelvis"}, {"Spine1", "torso"}};
+  for (const auto& [cmu, side] : std::vector<std::pair<std::string, std::string>>{{"Left", "_l"}, {"Right", "_r"}})
+    map.pairs.insert(map.pairs.end(), {{cmu + "UpLeg", "femur" + side},
+                                       {cmu + "Leg", "tibia" + side},
+                                       {cmu + "Foot", "talus" + side},
+                                       {cmu + "Arm", "humerus" + side},
+                                       {cmu + "ForeArm", "ulna" + side},
+                                       {cmu + "Hand", "hand" + side}});
+  return map;
+}
+
+bool isMeshSkeleton(const Skeleton& skeleton) { return skeleton.find("femur_l") >= 0 && skeleton.find("femur_r") >= 0; }
+
 bool isBoneSkeleton(const Skeleton& skeleton) {
   return skeleton.find("femur_left") >= 0 && skeleton.find("femur_right") >= 0;
 }
@@ -67,6 +82,7 @@ JointMap defaultJointMap(const Skeleton& source, const Skeleton& target) {
     if (source.find(joint.name) >= 0) shared.pairs.emplace_back(joint.name, joint.name);
   if (shared.pairs.size() * 2 >= target.joints.size()) return shared;
   if (isBoneSkeleton(target)) return cmuToBoneSkeletonJointMap();
+  if (isMeshSkeleton(target)) return cmuToMeshSkeletonJointMap();
   return cmuToMakeHumanJointMap();
 }
 

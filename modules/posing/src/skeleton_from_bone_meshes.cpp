@@ -26,6 +26,8 @@ struct Arm {
 };
 
 // A limb's bodies from its root down: their rest frames and tails (world).
+const std::vector<const char*> kLegBodies{"femur", "tibia", "talus"}, kArmBodies{"humerus", "ulna", "hand"};
+
 struct Chain {
   std::vector<const char*> bodies;
   std::vector<Eigen::Isometry3d> frames;
@@ -122,7 +124,7 @@ Chain legChain(const Leg& leg, const LegJoints& j) {
   const Eigen::Vector3d hip = j.femoralHead.centre, knee = j.knee.point;
   const Eigen::Vector3d femurZ = principalAxis(leg.femur.V, hip - centroid(leg.femur.V));
   const Eigen::Vector3d tibiaZ = principalAxis(leg.tibia.V, knee - centroid(leg.tibia.V));
-  return {{"femur", "tibia", "talus"},
+  return {kLegBodies,
           {placedFrame(boneFrame(2, femurZ, 0, j.knee.axis), hip), placedFrame(boneFrame(2, tibiaZ, 0, j.knee.axis), knee),
            placedFrame(boneFrame(0, j.ankleAxis, 2, tibiaZ), j.ankleCentre)},
           {knee, j.ankleCentre, Eigen::Vector3d::Zero()}};
@@ -169,7 +171,7 @@ Chain armChain(const Arm& arm, const ArmJoints& j) {
   const Eigen::Vector3d humerusZ = principalAxis(arm.humerus.V, shoulder - centroid(arm.humerus.V));
   const TriMesh forearm = concatenate(arm.ulna, arm.radius);
   const Eigen::Vector3d forearmZ = principalAxis(forearm.V, elbow - centroid(forearm.V));
-  return {{"humerus", "ulna", "hand"},
+  return {kArmBodies,
           {placedFrame(boneFrame(2, humerusZ, 0, j.elbow.axis), shoulder),
            placedFrame(boneFrame(2, forearmZ, 0, j.elbow.axis), elbow),
            placedFrame(boneFrame(0, j.wristAxis, 2, wrist - centroid(arm.hand.V)), wrist)},
@@ -201,6 +203,16 @@ std::vector<std::string> openSimHand(const std::string& side) {
     for (const char* phalanx : {"proximal", "medial", "distal"})
       names.push_back(std::string(finger) + "_" + phalanx + "_" + side + "vs");
   return names;
+}
+
+std::vector<std::string> meshSkeletonJoints() {
+  std::vector<std::string> joints{"pelvis"};
+  for (const char* side : {"_l", "_r"})
+    for (const char* body : kLegBodies) joints.push_back(body + std::string(side));
+  joints.push_back("torso");
+  for (const char* side : {"_l", "_r"})
+    for (const char* body : kArmBodies) joints.push_back(body + std::string(side));
+  return joints;
 }
 
 MeshSkeleton skeletonFromBoneMeshes(const std::map<std::string, TriMesh>& meshes, const SkeletonFromBoneMeshesOptions& o,

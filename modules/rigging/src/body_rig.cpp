@@ -152,6 +152,7 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
   regions.body = body;
   regions.solidBody = solidBody;
   if (!solidBody) {
+    regions.largestBodyPartOnly = true;
     regions.bodySurface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
     regions.labelSurface.targetFaces = int(std::max<long>(300, o.targetTets / 4 / long(ids.size())));
     return labelRegionSurfaces(box, ids, regions, source, &progress);

@@ -135,7 +135,7 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     segmentation::Mask inside = segmentation::nonZeroMask(map.labels);
     if (options.solidBody) inside = segmentation::closeMm(inside, 3 * voxel);
     inside = segmentation::fillBodyHoles(inside);
-    if (options.solidBody) inside = largestFaceConnectedPart(inside);
+    if (options.solidBody || options.largestBodyPartOnly) inside = largestFaceConnectedPart(inside);
     const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
     regions.push_back({meshing::labelSurface(body, 1, options.bodySurface), options.body,
                        source + " body (all labels, holes filled)"});

@@ -1,11 +1,14 @@
-// The virtual patient made posable (seed 001): the rig of the patient's own body and bones, and the
-// patient posed with it.
+// The virtual patient made posable (seed 001): the rig of the patient's model, and the patient posed with it.
 //
-// The rig (rigging/body_rig.h, rigFromBoneLabels): the skeleton from the bones of the organ map
-// (posing/skeleton_from_bones.h: pelvis from the hips and sacrum, the femurs, the lumbar vertebrae), the tets
-// of the scan's whole body inside its field of view (every voxel of the CT's tissue classes or of the organ
-// map), the bones nested in it, bone weights and CoR centres of rotation. It carries the model: the skin
-// and every tissue of the anatomy.
+// Two rigs (rigging/body_rig.h), both with bone weights and CoR centres of rotation:
+//  - rigWholeModel: the rig of the whole model (whole_model.h), as `rig --reference` makes it: the
+//    skeleton from the model's own bone meshes (posing/skeleton_from_bone_meshes.h: pelvis, legs, torso,
+//    arms; OpenSim's body names), the tets of the inside of the model's skin, the bones nested in it.
+//    Inside the scan the hip bones and femurs are the patient's (placed on the labels), so the hips turn
+//    about the patient's own hip centres.
+//  - rigPatient: without the whole model, the rig of the scan's body inside its field of view from the
+//    bones of the organ map (posing/skeleton_from_bones.h: pelvis from the hips and sacrum, the femurs, the
+//    lumbar vertebrae), every voxel of the CT's tissue classes or of the organ map.
 // A pose (posing/rig_poser.h) skins the tets, restores their volume, repairs the tets it inverts, carries
 // the meshes, and re-poses the scan and its organ map with the tets (posing/posed_volume.h, seed 001 §5).
 #pragma once
@@ -29,13 +32,26 @@
 namespace vesalius::patient {
 
 struct PatientRigOptions {
+  // The whole model's rig: 8 mm voxels keep the hands' bones (at 10 mm some have none) and make the
+  // shipped CT's model about 170,000 tets in about 35 s; TetGen keeps every triangle of the rib cage's
+  // surface, which sets the count above the target (docs/virtual-patient.md).
+  rigging::RigOptions modelRig = defaultModelRig();
+  posing::SkeletonFromBoneMeshesOptions modelBones;
+
+  // The scan's rig without the whole model: the whole body, not the bones' box; about 20,000 tets at 6 mm
+  // voxels, the shipped CT's rig in about 5 s. Finer voxels keep the thin tissue where the scan cuts the
+  // thighs, a voxel or two below the hip joints, whose tets a flexed hip inverts and the repair then
+  // inflates: both hips flexed 30 degrees change the skin's volume by 2.0 % at 4 mm and 20,000 tets, 0.7 %
+  // at 6 mm (docs/virtual-patient.md).
   rigging::RigOptions rig = defaultRig();
   posing::SkeletonFromBonesOptions bones;
 
-  // The whole body, not the bones' box; about 20,000 tets at 6 mm voxels, the shipped CT's rig in about 5 s.
-  // Finer voxels keep the thin tissue where the scan cuts the thighs, a voxel or two below the hip joints,
-  // whose tets a flexed hip inverts and the repair then inflates: both hips flexed 30 degrees change the
-  // skin's volume by 2.0 % at 4 mm and 20,000 tets, 0.7 % at 6 mm (docs/virtual-patient.md).
+  static rigging::RigOptions defaultModelRig() {
+    rigging::RigOptions o;
+    o.voxelSize = 8.0;
+    o.targetTets = 20000;
+    return o;
+  }
   static rigging::RigOptions defaultRig() {
     rigging::RigOptions o;
     o.voxelSize = 6.0;
@@ -52,6 +68,11 @@ struct PatientRig {
   std::string hipLeft, hipRight;  // the joints that turn the left and right hips
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
+
+// model: the whole model (a closed skin, OpenSim's bone meshes among its tissues), mm LPS; the rig carries
+// it. Throws what rigging::rigFromReference throws, naming `source`.
+PatientRig rigWholeModel(const ReferenceAnatomy& model, const PatientRigOptions& options, const std::string& source,
+                         Progress* progress = nullptr);
 
 // tissueClasses: the CT's tissue classes (segmentation/ct_tissues.h, 0 outside the body); organs: its
 // organ/bone map on the same grid; anatomy: the model to carry. Throws BadInput naming
@@ -74,7 +95,9 @@ struct PosedPatient {
   long tissueVerticesInsideAtRest = 0;
 };
 
-// world: posed world transforms of rig.rig.skeleton's joints. Throws UsageError for an unknown method.
+// world: posed world transforms of rig.rig.skeleton's joints. The scan is re-posed by the tets that hold
+// it at rest: its grid grows to hold them posed, whatever else of the model the rig carries. Throws
+// UsageError for an unknown method.
 PosedPatient posePatient(const PatientRig& rig, const std::vector<Eigen::Isometry3d>& world, const Image& ct,
                          const LabelMap* organs, const PatientPoseOptions& options = {});
 

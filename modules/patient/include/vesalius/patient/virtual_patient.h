@@ -12,14 +12,13 @@
 //     own bone class as one bone tissue.
 //  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
 //     partial skin and transferred into it (reference_completion.h; seed 000): a whole body around the scan.
-//  5. the rig: with an organ map holding the pelvis (hips, sacrum) and the femurs, the rig of the patient's
-//     body and bones that carries the model (patient_rig.h; seed 001); posePatient then poses it.
-//  6. the whole model (whole_model.h): the completed reference with, inside the field of view, the
+//  5. the whole model (whole_model.h): the completed reference with, inside the field of view, the
 //     patient's bones (the reference's meshes placed on the labels by the transfer's per-bone registration,
 //     seed 000 §8 with the label as target, then refined onto them) and the patient's other tissues;
 //     seed 000's rules measured on it (transfer/anatomy_rules.h).
-// Not yet (docs/virtual-patient.md): the rig carries the anatomy inside the field of view, not the whole
-// model.
+//  6. the rig (patient_rig.h; seed 001) that carries the model: the whole model's own rig (its bone
+//     meshes, its skin), or without the reference the rig of the scan's body and the organ map's bones
+//     (the pelvis and femurs needed); posePatient then poses it.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -55,7 +54,7 @@ struct VirtualPatientOptions {
   ScanAnatomyOptions surfaces;
   OrganFitOptions organFit;
   OrganSeparationOptions organSeparation;
-  bool rig = true;  // rig the model when the organ map has its bones
+  bool rig = true;  // rig the whole model, or without the reference the scan when the organ map has its bones
   PatientRigOptions rigging;
   // The full-body reference (full_body_reference.h) to complete into the patient beyond the field of view;
   // none: no completion. The caller's, not copied.
@@ -82,8 +81,7 @@ struct FittedOrgan {
 };
 
 struct VirtualPatient {
-  // Inside the field of view: the scan's skin (cut vertices marked) and the tissues of its labels, mm LPS;
-  // what the rig carries.
+  // Inside the field of view: the scan's skin (cut vertices marked) and the tissues of its labels, mm LPS.
   ReferenceAnatomy anatomy;
   Eigen::VectorXd fatThickness;  // #skin V: subcutaneous fat, mm
   LabelMap tissueClasses;        // the CT's tissue classes, on its grid
@@ -95,9 +93,13 @@ struct VirtualPatient {
   std::optional<ReferenceCompletion> completion;  // with options.fullBodyReference
   std::optional<WholeModel> whole;                // with the completion: the whole model
   std::optional<transfer::AnatomyRules> rules;    // seed 000's rules on the whole model (anatomy_rules.h)
-  std::optional<PatientRig> rig;  // none without an organ map holding the pelvis and femurs
-  std::string noRigBecause;       // why there is no rig, in the user's words
+  // Carries model(). None without the whole model and an organ map holding the pelvis and femurs.
+  std::optional<PatientRig> rig;
+  std::string noRigBecause;  // why there is no rig, in the user's words
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
+
+  // The whole model, or without the reference the anatomy inside the field of view.
+  const ReferenceAnatomy& model() const { return whole ? whole->anatomy : anatomy; }
 };
 
 // ct: a CT in HU. organs: its organ/bone segmentation on the same grid, or null. Throws BadInput naming

@@ -40,12 +40,21 @@ JointMap cmuToMakeHumanJointMap();
 // driven.
 JointMap cmuToBoneSkeletonJointMap();
 
+// CMU names onto the skeleton of bone meshes (skeleton_from_bone_meshes.h, OpenSim's bodies: pelvis,
+// femur_l, tibia_l, talus_l, torso, humerus_l, ulna_l, hand_l, ...): the hips drive the pelvis, the upper
+// spine (Spine1, the chest) the torso, which is one rigid bone from the lumbar joint up, and each limb
+// segment its bone. CMU's clavicles, neck, head, fingers and toes have no bone of their own here.
+JointMap cmuToMeshSkeletonJointMap();
+
+// Whether `skeleton` is a skeleton of bone meshes (skeleton_from_bone_meshes.h): it has femur_l and femur_r.
+bool isMeshSkeleton(const Skeleton& skeleton);
+
 // Whether `skeleton` is a scan's bone skeleton (skeleton_from_bones.h): it has femur_left and femur_right.
 bool isBoneSkeleton(const Skeleton& skeleton);
 
 // The map a motion needs when none is given: the names `source` and `target` share when at least half of
 // the target's joints are among them (a pose written for the same skeleton), else CMU's names onto the
-// scan-bone skeleton when the target is one, else CMU's onto MakeHuman's.
+// scan-bone or bone-mesh skeleton when the target is one, else CMU's onto MakeHuman's.
 JointMap defaultJointMap(const Skeleton& source, const Skeleton& target);
 
 }  // namespace vesalius::posing

@@ -130,6 +130,9 @@ struct MeshSkeleton {
   ArmJoints leftArm, rightArm;
 };
 
+// The joints' names of MeshSkeleton::skeleton, in its order, before any mesh is read.
+std::vector<std::string> meshSkeletonJoints();
+
 // meshes: bone meshes by name, mm LPS, placed in one model. Throws BadInput naming `source` and the mesh
 // if a mesh a bone needs is missing or empty, or if a joint's region (femoral head, posterior condyles,
 // end plates, humeral head, trochlea and capitulum) has fewer than 8 vertices.

@@ -30,6 +30,9 @@ struct LabelRegionOptions {
   // corner are separate surface pieces; crumbs give tets no bone weighs). Label voxels outside it are
   // dropped by the peel.
   bool solidBody = false;
+  // The body cut to its largest face-connected part also when it is not made solid (rig --reference: a
+  // finger that the voxels cut off the hand would be a shell of tets that no bone weighs).
+  bool largestBodyPartOnly = false;
   meshing::SurfaceOptions bodySurface;   // how the body is surfaced (e.g. decimated)
   meshing::SurfaceOptions labelSurface;  // how each label is surfaced
   // With labelFaces > 0, the labels' surfaces share this many faces in proportion to their voxel faces
