@@ -344,12 +344,8 @@ void runPatient(const PatientOptions& o) {
     progress.end();
   }
 
-  const TemporaryFolder temporary(o.out);
-  const std::string staged = temporary.path() + "/" + fs::path(o.out).filename().string();
-  fs::create_directories(staged);
-  writeOutputs(o, scan, p, pose, staged, report);
-  if (fs::exists(o.out)) fs::remove_all(o.out);
-  fs::rename(staged, o.out);
+  writeFolderAtomically(o.out, o.common.writeOptions(),
+                        [&](const std::string& staged) { writeOutputs(o, scan, p, pose, staged, report); });
   if (!o.common.report.empty()) o.common.finish(report);
 
   const ReferenceAnatomy& model = p.model();

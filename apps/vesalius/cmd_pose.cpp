@@ -160,12 +160,13 @@ struct Volumes {
 void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<TriMesh>& meshes,
                const std::vector<MatrixX3d>& carried, const Volumes& volumes, const Posed& posed,
                const std::string& dir, const std::string& png) {
-  const io::MeshWriteOptions write{o.common.writeOptions()};
+  // Every file is new: `dir` is in the staging folder of --out (core/atomic_file.h).
+  const io::MeshWriteOptions write{};
   fs::create_directories(dir);
   TetMesh tets = rig.tets;
   tets.V = posed.tets;
   io::writeTetMesh(dir + "/tets.vtu", tets, write);
-  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(rig.skeleton, posed.world), o.common.writeOptions());
+  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(rig.skeleton, posed.world));
   std::vector<TriMesh> out = meshes;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     out[m].V = carried[m];
@@ -173,10 +174,10 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
   }
   if (volumes.scan)
     io::writeScan(dir + "/" + fs::path(o.volume).filename().string(),
-                  posing::poseImage(rig.tets.V, rig.tets.T, posed.tets, *volumes.scan), o.common.writeOptions());
+                  posing::poseImage(rig.tets.V, rig.tets.T, posed.tets, *volumes.scan));
   if (volumes.labels)
     io::writeLabelMap(dir + "/" + fs::path(o.labels).filename().string(),
-                      posing::poseLabels(rig.tets.V, rig.tets.T, posed.tets, *volumes.labels), o.common.writeOptions());
+                      posing::poseLabels(rig.tets.V, rig.tets.T, posed.tets, *volumes.labels));
   if (!png.empty()) {
     // The skin translucent over the other meshes, as the viewer of the issue shows them.
     std::vector<viz::SurfaceLayer> layers;
@@ -184,7 +185,7 @@ void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<Tr
       const bool isSkin = fs::path(rig.meshes[m]).stem() == "skin";
       layers.push_back({&out[m], isSkin ? viz::Rgb{{230, 190, 160}} : viz::Rgb{{235, 235, 220}}, isSkin && out.size() > 1 ? 0.35 : 1.0});
     }
-    viz::writeSurfacesPng(layers, png, viz::SurfaceRenderOptions{800, 800, {{24, 24, 28}}, o.common.writeOptions()});
+    viz::writeSurfacesPng(layers, png, viz::SurfaceRenderOptions{800, 800, {{24, 24, 28}}, {}});
   }
 }
 
@@ -198,6 +199,11 @@ void checkOptions(const PoseOptions& o) {
     throw UsageError("pose: --quality-only writes no poses, so no --png-dir, --volume or --labels");
   if (!o.pngDir.empty() && !viz::canRenderSurfaces())
     throw UsageError("pose: --png-dir needs a display (run under xvfb-run -a)");
+  if (!o.volume.empty() && !o.labels.empty() && fs::path(o.volume).filename() == fs::path(o.labels).filename())
+    throw UsageError("pose: --volume and --labels have the same file name, which their posed copies keep");
+  // The folders are written whole at the end (core/atomic_file.h); their paths are checked before the work.
+  checkOutputFolder(o.out, o.common.writeOptions());
+  if (!o.pngDir.empty()) checkOutputFolder(o.pngDir, o.common.writeOptions());
 }
 
 void runPose(const PoseOptions& o) {
@@ -217,35 +223,41 @@ void runPose(const PoseOptions& o) {
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
   const posing::QualityMeter meter(rig, meshes, session.embeddings());
   std::vector<PoseQuality> quality;
-  Progress progress(o.common.progressStyle());
-  progress.begin("pose", o.method);
   double skinningSeconds = 0, restoreSeconds = 0, untangleSeconds = 0;  // skinning includes both
-  for (std::size_t p = 0; p < poses.size(); ++p) {
-    const auto start = std::chrono::steady_clock::now();
-    Posed posed{MatrixX3d(), poses[p].world};
-    const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
-    skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::vector<MatrixX3d> carried;
-    session.carry(posed.tets, carried);
-    quality.push_back(meter(posed.tets, carried));
-    quality.back().restore = repairs.restore;
-    quality.back().untangle = repairs.untangle;
-    quality.back().skinnedTetVolumeChangePct =
-        o.noRestore ? std::numeric_limits<double>::quiet_NaN() : 100 * repairs.restore.volumeChangeBefore;
-    restoreSeconds += repairs.restore.seconds;
-    untangleSeconds += repairs.untangle.seconds;
-    if (!o.qualityOnly) {
-      const std::string& name = poses[p].name;
-      const std::string dir = name.empty() ? o.out : o.out + "/" + name;
-      const std::string png = o.pngDir.empty() ? "" : o.pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
-      if (!o.pngDir.empty()) fs::create_directories(o.pngDir);
-      writePose(o, rig, meshes, carried, volumes, posed, dir, png);
+  // Every pose into the staging folders `out` and `pngDir`, then quality.tsv.
+  const auto poseAll = [&](const std::string& out, const std::string& pngDir) {
+    Progress progress(o.common.progressStyle());
+    progress.begin("pose", o.method);
+    for (std::size_t p = 0; p < poses.size(); ++p) {
+      const auto start = std::chrono::steady_clock::now();
+      Posed posed{MatrixX3d(), poses[p].world};
+      const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
+      skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::vector<MatrixX3d> carried;
+      session.carry(posed.tets, carried);
+      quality.push_back(meter(posed.tets, carried));
+      quality.back().restore = repairs.restore;
+      quality.back().untangle = repairs.untangle;
+      quality.back().skinnedTetVolumeChangePct =
+          o.noRestore ? std::numeric_limits<double>::quiet_NaN() : 100 * repairs.restore.volumeChangeBefore;
+      restoreSeconds += repairs.restore.seconds;
+      untangleSeconds += repairs.untangle.seconds;
+      if (!o.qualityOnly) {
+        const std::string& name = poses[p].name;
+        const std::string dir = name.empty() ? out : out + "/" + name;
+        const std::string png = pngDir.empty() ? "" : pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
+        writePose(o, rig, meshes, carried, volumes, posed, dir, png);
+      }
+      progress.update(double(p + 1) / poses.size());
     }
-    progress.update(double(p + 1) / poses.size());
-  }
-  progress.end();
-  fs::create_directories(o.out);
-  writeQualityTable(o.out + "/quality.tsv", poses, quality, o.method, o.common.writeOptions());
+    progress.end();
+    writeQualityTable(out + "/quality.tsv", poses, quality, o.method, {});
+  };
+  // Both folders whole or not at all: the renders' folder is moved into place just before --out.
+  writeFolderAtomically(o.out, o.common.writeOptions(), [&](const std::string& out) {
+    if (o.pngDir.empty()) return poseAll(out, "");
+    writeFolderAtomically(o.pngDir, o.common.writeOptions(), [&](const std::string& pngDir) { poseAll(out, pngDir); });
+  });
   report.output("poses", o.out);
   report.metric("poses", poses.size());
   const double skinOnly = skinningSeconds - restoreSeconds - untangleSeconds;

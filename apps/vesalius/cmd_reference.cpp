@@ -28,6 +28,7 @@ struct FullBodyOptions {
 };
 
 void runReference(const ReferenceOptions& o) {
+  checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
   io::Report report("reference torso");
   report.input("scan", o.scan);
   report.input("labels", o.labels);
@@ -62,6 +63,7 @@ void runReference(const ReferenceOptions& o) {
 // The full-body reference (seed 000 §3; patient/full_body_reference.h): the files read, the reference
 // built, its bones' moves inside the skin reported.
 void runFullBody(const FullBodyOptions& o) {
+  checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
   io::Report report("reference full-body");
   report.input("skin", o.skin);
   report.input("skeleton", o.skeleton);

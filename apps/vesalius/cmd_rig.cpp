@@ -141,6 +141,8 @@ void runRig(const RigOptions& o) {
     throw UsageError("rig: give --skin and --skeleton, or --labels, or --reference (one of them)");
   if (fromSkin && (o.skin.empty() || o.skeleton.empty())) throw UsageError("rig: --skin and --skeleton go together");
   if (!o.labelTable.empty() && o.labels.empty()) throw UsageError("rig: --label-table needs --labels");
+  // The rig folder is written whole at the end (io/anatomy_rig_io.h); its path is checked before the work.
+  checkOutputFolder(o.out, o.common.writeOptions());
   if (!o.reference.empty()) return runReferenceRig(o);
   fromSkin ? runSkinRig(o) : runLabelRig(o);
 }

@@ -28,8 +28,9 @@ std::string outputPath(const SeparateOptions& o, const std::string& in) {
   return (fs::path(o.out) / fs::path(in).filename()).string();
 }
 
-// Every output is refused before any work if it exists (without --force), is an input, or two inputs
-// share a file name, so that a run either writes every mesh or none.
+// Every output is refused before any work if it is an input or two inputs share a file name, and the
+// folder if it exists (without --force) or holds an input; the folder is written whole at the end
+// (core/atomic_file.h), so that a run either writes every mesh or none.
 void checkOutputs(const SeparateOptions& o) {
   if (o.meshes.size() < 2) throw UsageError("separate: give at least two --mesh");
   std::vector<std::string> outs;
@@ -40,9 +41,9 @@ void checkOutputs(const SeparateOptions& o) {
     std::error_code ec;
     for (const std::string& input : o.meshes)
       if (fs::equivalent(input, out, ec)) throw UsageError(out + ": is also an input; choose another --out folder");
-    if (!o.common.force && fs::exists(out)) throw UsageError(out + ": exists; pass --force to replace it");
     outs.push_back(out);
   }
+  checkOutputFolder(o.out, o.common.writeOptions());
 }
 
 TetMesh readFitted(const std::string& path) {
@@ -81,12 +82,11 @@ void runSeparate(const SeparateOptions& o) {
                 << " penetrating boundary vertices, largest move " << std::fixed << std::setprecision(2)
                 << r.maxDisplacement << " mm, regions " << r.regionTets[0] << " + " << r.regionTets[1] << " tets\n";
     }
-  fs::create_directories(o.out);
-  for (std::size_t i = 0; i < meshes.size(); ++i) {
-    const std::string out = outputPath(o, o.meshes[i]);
-    io::writeTetMesh(out, meshes[i], io::MeshWriteOptions{o.common.writeOptions()});
-    report.output("mesh", out);
-  }
+  writeFolderAtomically(o.out, o.common.writeOptions(), [&](const std::string& staging) {
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+      io::writeTetMesh(staging + "/" + fs::path(o.meshes[i]).filename().string(), meshes[i]);
+  });
+  for (const std::string& in : o.meshes) report.output("mesh", outputPath(o, in));
   o.common.finish(report);
 }
 

@@ -89,9 +89,10 @@ void runSurface(const SurfaceOptions& o) {
 
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(resolveLabel(map, s, o.labels));
-  // One label goes to --out as a file; several go into --out as a folder, one file per label name.
+  // One label goes to --out as a file; several go into --out as a folder, one file per label name, written
+  // whole or not at all (core/atomic_file.h). Its path is checked before the work.
   const bool single = ids.size() == 1;
-  if (!single) std::filesystem::create_directories(o.out);
+  if (!single) checkOutputFolder(o.out, o.common.writeOptions());
 
   meshing::SurfaceOptions options;
   if (o.smoothIterations >= 0) options.smoothingIterations = o.smoothIterations;
@@ -104,10 +105,28 @@ void runSurface(const SurfaceOptions& o) {
                : o.shared          ? sharedSurfaces(map, ids, o, report, progress)
                                    : meshing::labelSurfaces(map, ids, options, &progress);
   }
+  if (single) {
+    const meshing::LabelSurface& s = surfaces.front();
+    io::writeTriMesh(o.out, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
+    report.output(s.name, o.out);
+    std::cout << o.out << ": " << s.mesh.V.rows() << " vertices, " << s.mesh.F.rows() << " triangles\n";
+    return o.common.finish(report);
+  }
+  // Label names come from the label table, a file: made safe, so that no name writes outside --out.
+  std::vector<std::string> files;
   for (const meshing::LabelSurface& s : surfaces) {
-    // Label names come from the label table, a file: made safe, so that no name writes outside --out.
-    const std::string path = single ? o.out : (std::filesystem::path(o.out) / (safeFileName(s.name) + o.format)).string();
-    io::writeTriMesh(path, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
+    files.push_back(safeFileName(s.name) + o.format);
+    for (std::size_t other = 0; other + 1 < files.size(); ++other)
+      if (files[other] == files.back())
+        throw BadInput(o.labels, "labels '" + surfaces[other].name + "' and '" + s.name + "' would both be written to " +
+                                     files.back() + "; rename one in the label table");
+  }
+  writeFolderAtomically(o.out, o.common.writeOptions(), [&](const std::string& staging) {
+    for (std::size_t i = 0; i < surfaces.size(); ++i) io::writeTriMesh(staging + "/" + files[i], surfaces[i].mesh);
+  });
+  for (std::size_t i = 0; i < surfaces.size(); ++i) {
+    const meshing::LabelSurface& s = surfaces[i];
+    const std::string path = (std::filesystem::path(o.out) / files[i]).string();
     report.output(s.name, path);
     std::cout << path << ": " << s.mesh.V.rows() << " vertices, " << s.mesh.F.rows() << " triangles\n";
   }

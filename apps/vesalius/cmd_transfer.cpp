@@ -195,6 +195,7 @@ void runTransfer(const TransferOptions& o) {
   if (fs::weakly_canonical(o.out) == fs::weakly_canonical(o.reference))
     throw UsageError("transfer: --out must not be the reference folder (inputs are never overwritten)");
   if (!o.png.empty() && !viz::canRenderSurfaces()) throw UsageError("transfer: --png needs a display (run under xvfb-run)");
+  checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
   io::Report report("transfer");
   report.input("reference", o.reference);
   report.input("target_skin", o.targetSkin);

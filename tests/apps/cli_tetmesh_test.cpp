@@ -126,6 +126,7 @@ TEST(CliTetmesh, TouchingLabelsShareTheirBoundary) {
   const std::string table = kData + "/ct-abdomen-pelvis/labels_total_v1.tsv";
   const std::string folder = (fs::path(VESALIUS_TEST_OUTPUT) / "tetmesh" / "spine").string();
   fs::remove_all(folder);
+  fs::create_directories(fs::path(folder).parent_path());
   CommandResult r = runVesalius({"surface", "--labels", labels, "--table", table, "--label", "sacrum", "--label",
                                  "vertebrae_L5", "--shared", "--out", folder});
   ASSERT_EQ(r.exitCode, 0) << r.err;

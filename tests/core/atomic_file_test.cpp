@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -242,6 +243,134 @@ TEST_F(AtomicFile, SigtermDuringAWriteLeavesNoTemporary) { expectNoTemporaryAfte
 
 TEST_F(AtomicFile, SigintDuringAMultiFileWriteLeavesNoTemporary) {
   expectNoTemporaryAfterSignal(dir, SIGINT, true);
+}
+
+// writeFolderAtomically: the folder appears whole at the end, a failure or a signal halfway leaves the
+// old folder (or none) as it was, and nothing beside it.
+class AtomicFolder : public AtomicFile {
+ protected:
+  // Path -> bytes of every file under `root`, to compare a folder before and after.
+  static std::map<std::string, std::string> contents(const fs::path& root) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(root))
+      if (entry.is_regular_file()) files[fs::relative(entry.path(), root).string()] = get(entry.path());
+    return files;
+  }
+  // Writes `files` files, some in a subfolder, into `staging`; throws after `failAfter` of them.
+  static void writeSome(const std::string& staging, int files, int failAfter = -1) {
+    fs::create_directories(fs::path(staging) / "meshes" / "bones");
+    for (int i = 0; i < files; ++i) {
+      if (i == failAfter) throw BadInput(staging + "/meshes/m" + std::to_string(i) + ".obj", "cannot write: test");
+      writeFileBytes(staging + (i % 2 ? "/meshes/bones/m" : "/meshes/m") + std::to_string(i) + ".obj",
+                     std::string(100 + i, 'v'));
+    }
+  }
+};
+
+TEST_F(AtomicFolder, AppearsWholeAndReplacesOnlyWithForce) {
+  const std::string target = (dir / "rig").string();
+  for (const int files : {1, 3, 8}) {
+    SCOPED_TRACE(files);
+    writeFolderAtomically(target, {files > 1}, [&](const std::string& staging) {
+      EXPECT_NE(staging, target);
+      EXPECT_TRUE(fs::is_directory(staging));
+      EXPECT_TRUE(fs::is_empty(staging));
+      EXPECT_EQ(fs::path(staging).parent_path().parent_path(), dir);  // beside the target, so one file system
+      writeSome(staging, files);
+    });
+    EXPECT_EQ(contents(target).size(), std::size_t(files));  // the new folder only, none of the old files
+    EXPECT_EQ(listing(), std::vector<std::string>{"rig"});
+  }
+  const auto before = contents(target);
+  EXPECT_THROW(writeFolderAtomically(target, {}, [](const std::string&) { FAIL() << "written without --force"; }),
+               UsageError);
+  EXPECT_EQ(contents(target), before);
+  put((dir / "file").string(), "a file");
+  EXPECT_THROW(writeFolderAtomically((dir / "file").string(), {true}, [](const std::string&) {}), UsageError);
+  EXPECT_EQ(get(dir / "file"), "a file");
+  EXPECT_THROW(writeFolderAtomically((dir / "missing" / "rig").string(), {}, [](const std::string&) {}), UsageError);
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
+TEST_F(AtomicFolder, AFailureHalfwayLeavesTheOldFolderOrNone) {
+  for (const bool replacing : {false, true}) {
+    const std::string target = (dir / (replacing ? "old" : "new")).string();
+    std::map<std::string, std::string> before;
+    if (replacing) {
+      writeFolderAtomically(target, {}, [](const std::string& staging) { writeSome(staging, 5); });
+      before = contents(target);
+    }
+    for (const int failAfter : {1, 4}) {
+      SCOPED_TRACE(target + " failing after " + std::to_string(failAfter));
+      try {
+        writeFolderAtomically(target, {true}, [&](const std::string& staging) { writeSome(staging, 6, failAfter); });
+        ADD_FAILURE() << "no error";
+      } catch (const BadInput& error) {
+        // Named inside the output folder, never in the staging folder.
+        EXPECT_EQ(error.file(), target + "/meshes/m" + std::to_string(failAfter) + ".obj");
+      }
+      EXPECT_EQ(fs::exists(target), replacing);
+      if (replacing) EXPECT_EQ(contents(target), before);
+      std::vector<std::string> expected{fs::path(target).filename().string()};
+      if (!replacing) expected.clear();
+      EXPECT_EQ(listing(), expected);  // no staging folder left
+    }
+  }
+}
+
+// A folder write that a signal stops: the process dies of it, the staging folder is gone, and the folder
+// it was replacing is whole.
+TEST_F(AtomicFolder, ASignalHalfwayLeavesTheOldFolder) {
+  const std::string target = (dir / "poses").string();
+  writeFolderAtomically(target, {}, [](const std::string& staging) { writeSome(staging, 3); });
+  const auto before = contents(target);
+  for (const int signal : {SIGINT, SIGTERM}) {
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      ::close(ready[0]);
+      installCleanupOnSignal();
+      try {
+        writeFolderAtomically(target, {true}, [&](const std::string& staging) {
+          writeSome(staging, 7);
+          const char byte = 1;
+          if (::write(ready[1], &byte, 1) != 1) ::_exit(10);
+          for (;;) ::pause();
+        });
+      } catch (...) {
+        ::_exit(11);
+      }
+      ::_exit(12);
+    }
+    ::close(ready[1]);
+    char byte = 0;
+    ASSERT_EQ(::read(ready[0], &byte, 1), 1) << "the child died before it started writing";
+    ::close(ready[0]);
+    const std::size_t during = listing().size();
+    ASSERT_EQ(::kill(child, signal), 0);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "exit status " << status;
+    EXPECT_EQ(during, 2u);  // the folder and its staging folder
+    EXPECT_EQ(listing(), std::vector<std::string>{"poses"});
+    EXPECT_EQ(contents(target), before);
+    std::cout << "signal " << signal << " during a folder write: " << during << " entries beside, "
+              << listing().size() << " after; the old folder's " << before.size() << " files unchanged\n";
+  }
+}
+
+TEST_F(AtomicFolder, NeverReplacesAFolderHoldingAnInput) {
+  const std::string target = (dir / "reference").string();
+  writeFolderAtomically(target, {}, [](const std::string& staging) { writeSome(staging, 2); });
+  const auto before = contents(target);
+  protectInput(target + "/meshes/m0.obj");
+  for (const std::string& out : {target, dir.string()}) {
+    SCOPED_TRACE(out);
+    EXPECT_THROW(writeFolderAtomically(out, {true}, [](const std::string&) { FAIL() << "written"; }), UsageError);
+  }
+  EXPECT_EQ(contents(target), before);
 }
 
 TEST(AtomicFileExtension, KnowsDoubleExtensionsAndLowersCase) {

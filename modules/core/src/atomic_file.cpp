@@ -4,6 +4,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include <cerrno>
 #include <climits>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -46,8 +48,8 @@ int claimSlot() {
   return -1;
 }
 
-// Removes what the open folder `fd` holds, subfolders to `depth` levels (a multi-file output such as a
-// reference anatomy has one). Async-signal-safe: openat, getdents64, unlinkat, lseek and close only.
+// Removes what the open folder `fd` holds, subfolders to `depth` levels (a multi-file output nests a few:
+// patient/posed/anatomy/tissues inside its staging folder). Async-signal-safe: openat, getdents64, unlinkat, lseek and close only.
 void emptyFolderInHandler(int fd, int depth) {
   alignas(8) char buffer[2048];
   // Removing entries while reading the listing may hide others, so the listing is read again until a
@@ -84,7 +86,7 @@ void emptyFolderInHandler(int fd, int depth) {
 void removeFolderInHandler(const char* path) {
   const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd >= 0) {
-    emptyFolderInHandler(fd, 4);
+    emptyFolderInHandler(fd, 8);
     ::close(fd);
   }
   ::rmdir(path);
@@ -311,6 +313,123 @@ void writeAtomically(const std::string& path, const WriteOptions& options,
     throw BadInput(replaced(error.file(), temporary, path), replaced(error.problem(), temporary, path));
   } catch (const fs::filesystem_error& error) {
     throw BadInput(path, "cannot write: " + error.code().message());
+  }
+}
+
+namespace {
+
+// `dir` as the folder it names: "out/" and "out/." are "out".
+fs::path outputFolder(const std::string& dir) {
+  fs::path target = fs::path(dir).lexically_normal();
+  if (target.filename().empty() && target.has_parent_path()) target = target.parent_path();
+  const std::string name = target.filename().string();
+  if (name.empty() || name == "." || name == ".." || target == target.root_path())
+    throw UsageError(dir + ": names no folder that can be written whole; give the output folder's own name");
+  return target;
+}
+
+// Every file and folder under `root` flushed to the disk, so that a delayed write error fails before the
+// folder is moved into place.
+void syncTree(const fs::path& root, const std::string& from, const std::string& to) {
+  std::vector<fs::path> folders{root};
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_symlink()) continue;
+    if (entry.is_directory())
+      folders.push_back(entry.path());
+    else if (entry.is_regular_file())
+      syncFile(entry.path().string(), replaced(entry.path().string(), from, to));
+  }
+  for (auto f = folders.rbegin(); f != folders.rend(); ++f) syncFolder(*f, replaced(f->string(), from, to));
+}
+
+// SIGINT, SIGTERM and SIGHUP held off while this lives: the cleanup handler would remove the private
+// folder, and with it the old output while it is renamed aside.
+class CleanupSignalsHeld {
+ public:
+  CleanupSignalsHeld() {
+    sigset_t held;
+    sigemptyset(&held);
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, signal);
+    ::pthread_sigmask(SIG_BLOCK, &held, &previous_);
+  }
+  ~CleanupSignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+  CleanupSignalsHeld(const CleanupSignalsHeld&) = delete;
+  CleanupSignalsHeld& operator=(const CleanupSignalsHeld&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
+bool cannotRenameSo(int error) { return error == EINVAL || error == ENOSYS || error == ENOTSUP || error == EOPNOTSUPP; }
+
+// Moves the finished folder `staged` to `target`; an existing `target` ends up at `aside` (inside the
+// private folder, removed with it).
+void moveFolderIntoPlace(const fs::path& staged, const fs::path& target, const fs::path& aside, const std::string& to) {
+  struct stat info {};
+  const auto fail = [&](int error) {
+    throw BadInput(to, "cannot move the written folder into place: " + errnoText(error));
+  };
+  if (::lstat(target.c_str(), &info) != 0) {
+    // A folder made there meanwhile is not replaced.
+    if (::renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return;
+    if (!cannotRenameSo(errno)) fail(errno);
+    if (::rename(staged.c_str(), target.c_str()) != 0) fail(errno);
+    return;
+  }
+  // One step: the old and the new folder trade places.
+  if (::renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) return;
+  if (!cannotRenameSo(errno)) fail(errno);
+  const CleanupSignalsHeld held;
+  if (::rename(target.c_str(), aside.c_str()) != 0) fail(errno);
+  if (::rename(staged.c_str(), target.c_str()) != 0) {
+    const int error = errno;
+    ::rename(aside.c_str(), target.c_str());  // the old folder back where it was
+    fail(error);
+  }
+}
+
+}  // namespace
+
+void checkOutputFolder(const std::string& dir, const WriteOptions& options) {
+  const fs::path target = outputFolder(dir);
+  checkNotAnInput(target.string());
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(target, ec);
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) throw UsageError(dir + ": exists and is not a folder");
+    if (!options.force) throw UsageError(dir + ": exists; pass --force to replace it");
+  }
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent, ec)) throw UsageError(dir + ": folder " + parent.string() + " does not exist");
+}
+
+void writeFolderAtomically(const std::string& dir, const WriteOptions& options,
+                           const std::function<void(const std::string& stagingDir)>& write) {
+  checkOutputFolder(dir, options);
+  const fs::path target = outputFolder(dir);
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // Beside the output, so the final rename stays on one file system.
+  const TemporaryFolder folder(target.string());
+  // A folder of its own inside the private one: made with the usual mode, not mkdtemp's 0700.
+  const fs::path staged = fs::path(folder.path()) / target.filename();
+  const fs::path aside = fs::path(folder.path()) / (target.filename().string() + ".replaced");
+  const std::string from = staged.string(), to = target.string();
+  try {
+    if (::mkdir(staged.c_str(), 0777) != 0) throw BadInput(to, "cannot create: " + errnoText(errno));
+    write(staged.string());
+    syncTree(staged, from, to);
+    moveFolderIntoPlace(staged, target, aside, to);
+    syncFolder(parent, to);
+  } catch (const BadInput& error) {
+    // Writers name the files they were given; the user knows only the output folder.
+    throw BadInput(replaced(error.file(), from, to), replaced(error.problem(), from, to));
+  } catch (const UsageError& error) {
+    throw UsageError(replaced(error.what(), from, to));
+  } catch (const NumericalFailure& error) {
+    throw NumericalFailure(replaced(error.what(), from, to));
+  } catch (const fs::filesystem_error& error) {
+    const std::string file = error.path1().empty() ? to : replaced(error.path1().string(), from, to);
+    throw BadInput(file, "cannot write: " + error.code().message());
   }
 }
 

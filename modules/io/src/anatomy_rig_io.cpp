@@ -100,24 +100,29 @@ void readFrames(const std::string& path, Skeleton& skeleton) {
 
 void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
                      const std::vector<std::pair<std::string, TriMesh>>& meshes, const WriteOptions& options) {
-  fs::create_directories(fs::path(dir) / "meshes");
-  writeTetMesh(dir + "/rig.vtu", rig.tets, MeshWriteOptions{options});
-  writeAtomically(dir + "/bones.txt", options, [&](const std::string& path) {
-    std::ofstream out(path);
-    for (int j : rig.boneJoint) out << rig.skeleton.joints[j].name << '\n';
-    out.close();
-    if (!out) throw BadInput(path, "cannot write");
+  // Whole or not at all (core/atomic_file.h): a failure halfway leaves no mixed rig folder, which `pose`
+  // would read as a rig of parts that do not belong together.
+  writeFolderAtomically(dir, options, [&](const std::string& staging) {
+    fs::create_directory(fs::path(staging) / "meshes");
+    writeTetMesh(staging + "/rig.vtu", rig.tets);
+    writeAtomically(staging + "/bones.txt", {}, [&](const std::string& path) {
+      std::ofstream out(path);
+      for (int j : rig.boneJoint) out << rig.skeleton.joints[j].name << '\n';
+      out.close();
+      if (!out) throw BadInput(path, "cannot write");
+    });
+    std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();
+    writeBvh(staging + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), {});
+    if (hasRotatedFrames(rig.skeleton)) writeFrames(staging + "/frames.txt", rig.skeleton, {});
+    // Mesh names come from label tables and reference.json: their stems are made safe (their extensions are
+    // the writer's format).
+    for (const auto& [name, mesh] : meshes) {
+      const fs::path file(name);
+      const std::string relative = "meshes/" + safeFileName(file.stem().string()) + file.extension().string();
+      if (fs::exists(staging + "/" + relative)) throw BadInput(dir, "two meshes share the file name " + relative);
+      writeTriMesh(staging + "/" + relative, mesh);
+    }
   });
-  std::vector<Eigen::Isometry3d> rest = rig.skeleton.restWorld();
-  writeBvh(dir + "/skeleton.bvh", posedSkeletonMotion(rig.skeleton, rest), options);
-  if (hasRotatedFrames(rig.skeleton)) writeFrames(dir + "/frames.txt", rig.skeleton, options);
-  // Mesh names come from label tables and reference.json: their stems are made safe (their extensions are
-  // the writer's format).
-  for (const auto& [name, mesh] : meshes) {
-    const fs::path file(name);
-    writeTriMesh(dir + "/meshes/" + safeFileName(file.stem().string()) + file.extension().string(), mesh,
-                     MeshWriteOptions{options});
-  }
 }
 
 AnatomyRig readAnatomyRig(const std::string& dir) {

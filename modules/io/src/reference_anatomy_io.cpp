@@ -114,17 +114,10 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
 void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& anatomy, const WriteOptions& options,
                            const std::vector<std::pair<std::string, TriMesh>>& extras) {
   anatomy.validate(folder);
-  fs::path target = fs::path(folder).lexically_normal();
-  if (target.filename().empty()) target = target.parent_path();  // "out/" names the folder "out"
-  checkNotAnInput(target.string());
-  if (fs::exists(target) && !options.force)
-    throw UsageError(folder + " exists; pass --force to replace it");
-  if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  // A private folder beside the target (core/atomic_file.h): no planted symlink is followed, and an
-  // interrupted write leaves nothing.
-  const TemporaryFolder staging(target.string());
-  const fs::path temporary = staging.path();
-  try {
+  // Whole or not at all (core/atomic_file.h): no planted symlink is followed, an interrupted write leaves
+  // nothing, and a replaced folder is there, old or new, at every moment.
+  writeFolderAtomically(folder, options, [&](const std::string& staging) {
+    const fs::path temporary(staging);
     fs::create_directories(temporary / "tissues");
     Json doc;
     doc["format"] = kFormat;
@@ -153,25 +146,10 @@ void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& an
     for (const auto& [file, mesh] : extras) writeTriMesh((temporary / file).string(), mesh);
     try {
       writeFileBytes((temporary / "reference.json").string(), doc.dump(2) + '\n');
-      syncFile((temporary / "reference.json").string(), folder);
     } catch (const BadInput& error) {
       throw BadInput(folder, "reference.json: " + error.problem());
     }
-  } catch (const BadInput& error) {
-    // The writers name files in the private folder; the user knows the target.
-    const auto named = [&](std::string text) {
-      const std::string from = temporary.string(), to = target.string();
-      for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-        text.replace(at, from.size(), to);
-      return text;
-    };
-    throw BadInput(named(error.file()), named(error.problem()));
-  }
-  // mkdtemp made the folder private; the finished one is readable by others, as a new folder would be.
-  fs::permissions(temporary, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                 fs::perms::others_read | fs::perms::others_exec);
-  fs::remove_all(target);
-  fs::rename(temporary, target);
+  });
 }
 
 }  // namespace vesalius::io

@@ -1,4 +1,5 @@
-// Writing outputs so that nothing is lost (DESIGN.md, "Nothing is lost").
+// Writing outputs so that nothing is lost (DESIGN.md, "Nothing is lost"): one file by writeAtomically,
+// a folder of files by writeFolderAtomically (below).
 //
 // How an output is written by writeAtomically:
 //  1. Checks first: an existing output is kept unless `force`; a folder, device or pipe is never replaced;
@@ -69,6 +70,24 @@ class TemporaryFolder {
   std::string path_;
   int slot_ = -1;  // in the signal cleanup table, or -1 if the table was full
 };
+
+// A multi-file output folder (a rig, a reference, one mesh per label, poses) is written whole or not at
+// all. checkOutputFolder(dir, options) is what a command calls before its work: `dir` must not be or hold
+// a protected input (checkNotAnInput), a file or other non-folder there is refused, an existing folder is
+// replaced only with options.force, and the folder `dir` goes into must exist (UsageError for each).
+// writeFolderAtomically checks the same again, then calls `write(stagingDir)`, where stagingDir is a new
+// empty folder inside a TemporaryFolder beside `dir`; the writer puts every file there (plain writes or
+// writeAtomically). Every file in it is then fsynced and the folder moved into place: over an existing
+// folder by an atomic exchange of the two (renameat2 RENAME_EXCHANGE; where the file system cannot, the
+// old folder is renamed aside into the private folder and the new one in, with SIGINT, SIGTERM and SIGHUP
+// held off in between), so that `dir` is at every moment either the whole old folder or the whole new
+// one; the old one is removed with the private folder. A failure or a signal (installCleanupOnSignal)
+// before that removes the staging folder and leaves `dir` as it was; a BadInput or UsageError naming a
+// file in the staging folder is rethrown naming it inside `dir`, and a file system error becomes a
+// BadInput naming `dir`.
+void checkOutputFolder(const std::string& dir, const WriteOptions& options);
+void writeFolderAtomically(const std::string& dir, const WriteOptions& options,
+                           const std::function<void(const std::string& stagingDir)>& write);
 
 // Makes SIGINT, SIGTERM and SIGHUP remove every live TemporaryFolder, then die of the signal as they would
 // have. A signal the process ignores (nohup) stays ignored. Safe to call more than once.

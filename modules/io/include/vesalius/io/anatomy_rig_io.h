@@ -28,9 +28,10 @@
 
 namespace vesalius::io {
 
-// Writes rig.vtu, bones.txt, skeleton.bvh (and frames.txt) and meshes/<name> for each (name, mesh) into
-// `dir` (created); names are made safe file names, their extensions pick the format. Every file atomically;
-// existing ones kept unless options.force (UsageError).
+// Writes rig.vtu, bones.txt, skeleton.bvh (and frames.txt) and meshes/<name> for each (name, mesh) as the
+// folder `dir`, whole or not at all (writeFolderAtomically: an existing folder is replaced only with
+// options.force, its parent must exist); names are made safe file names, their extensions pick the format;
+// two meshes whose names give one file are refused (BadInput naming `dir`).
 void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
                      const std::vector<std::pair<std::string, TriMesh>>& meshes, const WriteOptions& options);
 

@@ -32,9 +32,10 @@ std::string tissueFile(const std::string& name);
 // Throws BadInput naming the file (reference.json or a mesh) for anything missing or malformed.
 ReferenceAnatomy readReferenceAnatomy(const std::string& folder);
 
-// Writes the folder whole or not at all: into a temporary sibling folder, renamed into place at the end.
-// `extras`: more meshes to put in the folder beside the anatomy (file name, mesh), not listed in
-// reference.json. Throws UsageError if `folder` exists and !options.force.
+// Writes the folder whole or not at all (core/atomic_file.h writeFolderAtomically: staged beside it,
+// moved into place at the end; an existing folder is replaced only with options.force, else UsageError;
+// its parent must exist). `extras`: more meshes to put in the folder beside the anatomy (file name, mesh),
+// not listed in reference.json.
 void writeReferenceAnatomy(const std::string& folder, const ReferenceAnatomy& anatomy, const WriteOptions& options,
                            const std::vector<std::pair<std::string, TriMesh>>& extras = {});
 
