@@ -1,8 +1,10 @@
 #include "vesalius/rigging/body_rig.h"
 
+#include "vesalius/core/tet_locator.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
+#include "vesalius/meshing/tet_budget.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "vesalius/posing/bone_vertices.h"
 #include "vesalius/posing/bone_weights.h"
@@ -17,7 +19,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <optional>
 
 namespace vesalius::rigging {
 
@@ -44,13 +48,88 @@ TetMesh bodyTets(const TriMesh& skin, const RigOptions& o, const std::string& so
   const segmentation::Mask inside = skinInsideMask(skin, bodyGrid(skin, o), source);
   meshing::TetrahedralizeOptions tet;
   tet.targetTets = o.targetTets;
-  // The voxel surface has about a triangle per boundary voxel face, which TetGen would keep and refine
-  // around (900k tets for a target of 30k at 8 mm voxels); decimated to a quarter of the target, the
-  // tet count follows the target.
+  // The voxel surface has about a triangle per boundary voxel face, which TetGen keeps and refines around
+  // (900k tets for a target of 30k at 8 mm voxels; 129k for 20k with a quarter of the target in faces):
+  // decimated to the faces the target allows, and coarsened again while the tets are more than twice it.
   meshing::SurfaceOptions surface;
-  surface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
+  surface.targetFaces = meshing::facesForTets(o.targetTets);
   const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
-  return meshing::tetrahedralizeRegions({{meshing::labelSurface(body, 1, surface), 1, source + " (voxelized)"}}, tet);
+  return meshing::tetrahedralizeWithinBudget(meshing::labelSurface(body, 1, surface), tet, source + " (voxelized)").tets;
+}
+
+// Whether tet t has bone vertices only, of more than one bone: the bones' relative turn deforms it and the
+// untangler (untangle_tets.h), which moves tissue vertices only, cannot repair it if it inverts.
+bool joinsBonesAlone(const MatrixX4i& T, Eigen::Index t, const Eigen::VectorXi& bone) {
+  for (int k = 0; k < 4; ++k)
+    if (bone[T(t, k)] < 0) return false;
+  for (int k = 1; k < 4; ++k)
+    if (bone[T(t, k)] != bone[T(t, 0)]) return true;
+  return false;
+}
+
+// Capsules that touch (the pelvis's halves and the lowest spine segment meet at the root) can give a tet
+// of bone vertices alone that joins two bones; such a tet inverted in 13 of 28 CMU frames on the muscular
+// body. Each loses one bone vertex to the tissue: the one of the bone with the most vertices.
+void separateBones(const TetMesh& tets, int joints, Eigen::VectorXi& bone) {
+  std::vector<long> count(std::size_t(joints), 0);
+  for (Eigen::Index v = 0; v < bone.size(); ++v)
+    if (bone[v] >= 0) ++count[std::size_t(bone[v])];
+  for (Eigen::Index t = 0; t < tets.T.rows(); ++t) {
+    if (!joinsBonesAlone(tets.T, t, bone)) continue;
+    int freed = tets.T(t, 0);
+    for (int k = 1; k < 4; ++k)
+      if (count[std::size_t(bone[tets.T(t, k)])] > count[std::size_t(bone[freed])]) freed = tets.T(t, k);
+    --count[std::size_t(bone[freed])];
+    bone[freed] = -1;
+  }
+}
+
+// Capsules inside the meshed body that hold no tet vertex (a metacarpal's capsule of 2-3 mm radius between
+// vertices 15-30 mm apart in a coarse rig) each take the free vertex nearest their trimmed segment that
+// makes no tet of bone vertices alone join two bones, so that every bone inside the tets moves its tissue.
+// "Inside": points along the trimmed segment, as many as the capsules' clearance samples, all in a tet.
+// Segments leaving the tets (finger tips and face bones thinner than a voxel or crossing the skin) stay
+// without bone. The vertex taken lies outside the capsule, at most a tet's size from its axis: a deviation
+// from the capsule rule (bone_capsules.h), stated in docs/methods/posing.md.
+void holdEmptyCapsules(const TetMesh& tets, const Skeleton& skeleton, const posing::BoneCapsuleOptions& o,
+                       Eigen::VectorXi& bone) {
+  std::vector<bool> held(skeleton.joints.size(), false);
+  for (Eigen::Index v = 0; v < bone.size(); ++v)
+    if (bone[v] >= 0) held[std::size_t(bone[v])] = true;
+  const std::vector<Eigen::Isometry3d> rest = skeleton.restWorld();
+  std::optional<TetLocator> locator;
+  std::vector<std::vector<Eigen::Index>> tetsOf;
+  for (std::size_t j = 0; j < rest.size(); ++j) {
+    if (held[j] || skeleton.joints[j].tail.norm() == 0) continue;
+    const Eigen::Vector3d head = rest[j].translation(), tail = rest[j] * skeleton.joints[j].tail;
+    const Eigen::Vector3d a = head + o.endTrim * (tail - head), b = tail - o.endTrim * (tail - head);
+    if (!locator) {
+      locator.emplace(tets.V, tets.T);
+      tetsOf.resize(std::size_t(tets.V.rows()));
+      for (Eigen::Index t = 0; t < tets.T.rows(); ++t)
+        for (int k = 0; k < 4; ++k) tetsOf[std::size_t(tets.T(t, k))].push_back(t);
+    }
+    bool inside = true;
+    for (int k = 0; k < o.samples && inside; ++k)
+      inside = bool(locator->locate(a + (b - a) * (k / double(o.samples - 1))));
+    if (!inside) continue;
+    const Eigen::Vector3d ab = b - a;
+    std::vector<std::pair<double, Eigen::Index>> free;
+    for (Eigen::Index v = 0; v < tets.V.rows(); ++v) {
+      if (bone[v] >= 0) continue;
+      const Eigen::Vector3d p = tets.V.row(v).transpose();
+      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+      free.emplace_back((p - (a + t * ab)).squaredNorm(), v);
+    }
+    std::sort(free.begin(), free.end());
+    for (const auto& [distance, v] : free) {
+      bone[v] = int(j);
+      const auto& around = tetsOf[std::size_t(v)];
+      if (std::none_of(around.begin(), around.end(), [&](Eigen::Index t) { return joinsBonesAlone(tets.T, t, bone); }))
+        break;
+      bone[v] = -1;
+    }
+  }
 }
 
 // Bone columns: the joints whose capsule holds a vertex, in skeleton order; "bone" becomes the column.
@@ -242,6 +321,8 @@ BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const Ri
     p.end();
   });
   Eigen::VectorXi bone = posing::boneCapsuleVertices(built.rig.tets.V, skeleton, skin, options.capsules);
+  separateBones(built.rig.tets, int(skeleton.joints.size()), bone);
+  holdEmptyCapsules(built.rig.tets, skeleton, options.capsules, bone);
   built.rig.boneJoint = compactBones(bone, int(skeleton.joints.size()));
   weighRig(built, bone, options, p);
   return built;

@@ -1,7 +1,9 @@
 // The posing rig of a body (seed 001 §3.1-3.5 preprocessing): a tet mesh of the inside of the skin with
 // bone regions, bone weights (§3.3) and centres of rotation (§3.5), from one of three inputs:
-//  - a skin and a skeleton: the inside of the skin voxelized (bone_mesh_labels.h) and tetrahedralized, the
-//    bones capsules around the skeleton's segments (posing/bone_capsules.h);
+//  - a skin and a skeleton: the inside of the skin voxelized (bone_mesh_labels.h) and tetrahedralized within
+//    2x of the tet target (meshing/tet_budget.h), the bones capsules around the skeleton's segments
+//    (posing/bone_capsules.h), each capsule inside the tets holding a vertex and no tet of bone vertices
+//    alone joining two bones (docs/methods/posing.md);
 //  - a label map with segmented bones (a CT's TotalSegmentator labels): the skeleton from the labels
 //    (posing/skeleton_from_bones.h), the body and its bones as nested region surfaces (label_regions.h);
 //  - a reference anatomy with OpenSim's bone meshes in its skin: the skeleton from the meshes
