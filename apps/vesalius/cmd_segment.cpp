@@ -77,10 +77,12 @@ void addSegmentCommand(CLI::App& app) {
                   "dark bone such as the skull, soft_tissue)")
       ->check(CLI::IsMember({"ct", "mri"}))
       ->capture_default_str();
-  cmd->add_option("--out", o->out,
-                  "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for Vesalius (.tsv), "
-                  "3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer segmentation (.seg.nrrd)")
-      ->required();
+  slicerParameter(cmd->add_option("--out", o->out,
+                                  "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for "
+                                  "Vesalius (.tsv), 3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer "
+                                  "segmentation (.seg.nrrd)")
+                      ->required(),
+                  SlicerKind::LabelImage, true, ".nrrd,.nii.gz,.mha");
   cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");
   cmd->add_option("--skin-thickness", o->skinThickness, "Skin shell thickness in mm")->capture_default_str();
   addCommonOptions(*cmd, o->common);

@@ -139,9 +139,13 @@ void addSurfaceCommand(CLI::App& app) {
   auto o = std::make_shared<SurfaceOptions>();
   CLI::App* cmd = app.add_subcommand("surface", "Closed, smoothed surfaces of labels (one mesh per label, LPS mm)");
   cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage)")->required();
-  cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
+  slicerParameter(
+      cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map"),
+      SlicerKind::File, false, ".tsv,.ctbl,.txt");
   cmd->add_option("--label", o->selected, "Label id or name, repeatable (default: every label in the table)");
-  cmd->add_option("--out", o->out, "Mesh file for one label; a folder for several")->required();
+  // In Slicer one model: the mesh of one --label.
+  slicerParameter(cmd->add_option("--out", o->out, "Mesh file for one label; a folder for several")->required(),
+                  SlicerKind::Geometry, true, ".vtp,.vtk,.stl,.obj,.ply");
   cmd->add_option("--format", o->format, "File type for several labels")
       ->check(CLI::IsMember({".vtp", ".stl", ".obj", ".ply", ".vtk"}))
       ->capture_default_str();

@@ -25,9 +25,32 @@ struct CommonOptions {
   void finish(const io::Report& report) const;
 };
 
-// Adds --progress, --force and --report to a subcommand; an existing --report without --force is refused
-// when the options are parsed.
+// Adds --progress, --force, --report and --xml to a subcommand; an existing --report without --force is
+// refused when the options are parsed. --xml prints slicerXml(command) and exits 0 before any other option
+// is checked, so that 3D Slicer can run `vesalius COMMAND --xml` without the command's required options.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+// What a 3D Slicer CLI module parameter is, where CLI11 cannot tell: an image (a volume node in Slicer), a
+// label map image, a geometry (a model node), a file or a directory.
+enum class SlicerKind { Image, LabelImage, Geometry, File, Directory };
+
+// Marks `option` as a Slicer parameter of `kind`, read (`output` false) or written by the command;
+// `fileExtensions` (".nii.gz,.nrrd") tells Slicer the file types. Returns `option`.
+CLI::Option* slicerParameter(CLI::Option* option, SlicerKind kind, bool output, const std::string& fileExtensions = "");
+
+// The command's 3D Slicer CLI module description (SlicerExecutionModel XML, ModuleDescriptionParser's
+// rules): one parameter per option (--help and --xml aside), each named and long-flagged after the option
+// with '-' as '_' (Slicer allows only letters, digits and '_'; see slicerArguments). Types come from CLI11
+// (a flag is a <boolean>, an int an <integer>, a double a <double>, an IsMember check a
+// <string-enumeration>, a positional argument an <index>ed parameter), kinds from slicerParameter, else by
+// the conventions of the commands: --scan is an input image, --labels and --organs input label maps, an
+// output option (named as checkInputsAndOutputs names them) a file, or a directory when its description
+// speaks of a folder or directory; any other text a <string>. --progress defaults to slicer in it.
+std::string slicerXml(const CLI::App& command);
+
+// Slicer passes the long flags of slicerXml (`--skin_thickness 2`); turns each `--a_b` or `--a_b=v` in
+// argv into the option's own `--a-b` in place. Values are left alone.
+void slicerArguments(int argc, char** argv);
 
 // The one line `vesalius` prints for `error`: a BadInput raised by library code that knows no file (a
 // scan that is constant, points that are collinear) is prefixed with the command's input files.

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   vesalius::cli::addPatientCommand(app);
   vesalius::cli::addDemoCommand(app);
 
+  vesalius::cli::slicerArguments(argc, argv);  // 3D Slicer passes --skin_thickness for --skin-thickness
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
