@@ -3,14 +3,11 @@
 // the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
 #include "common.h"
 #include "full_body_sources.h"
+#include "patient_outputs.h"
 #include "posing_session.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/core/markers.h"
-#include "vesalius/io/anatomy_rig_io.h"
-#include "vesalius/io/gltf.h"
 #include "vesalius/io/image_io.h"
-#include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
@@ -18,7 +15,6 @@
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/rig_poser.h"
 #include "vesalius/posing/skeleton_from_bone_meshes.h"
-#include "vesalius/viz/slice_overlay.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <algorithm>
@@ -59,91 +55,6 @@ std::vector<patient::OrganTemplate> readTemplates(const std::string& folder) {
   return templates;
 }
 
-nlohmann::json fitReport(const patient::FittedOrgan& f) {
-  const auto meanAndMax = [](const Eigen::VectorXd& e) {
-    return nlohmann::json{{"mean", e.mean()}, {"max", e.maxCoeff()}};
-  };
-  return {{"template", f.templateSource},
-          {"markers", f.fit.markers.rows()},
-          {"error_before_mm", meanAndMax(f.fit.errorBefore)},
-          {"error_after_mm", meanAndMax(f.fit.errorAfter)},
-          {"tets_per_round", f.fit.tetsPerRound},
-          {"mean_error_per_round_mm", f.fit.meanErrorPerRound}};
-}
-
-MarkerSet icpMarkers(const patient::FittedOrgan& f) {
-  MarkerSet set;
-  set.name = f.organ;
-  for (Eigen::Index i = 0; i < f.fit.markers.rows(); ++i) {
-    Marker m;
-    m.label = "icp-" + std::to_string(i + 1);
-    m.kind = MarkerKind::IcpMarker;
-    m.position = f.fit.markers.row(i).transpose();
-    m.description = "on label " + f.organ;
-    set.markers.push_back(std::move(m));
-  }
-  return set;
-}
-
-void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
-  std::vector<viz::SurfaceLayer> layers;
-  for (const ReferenceTissue& t : anatomy.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
-  layers.push_back({&anatomy.skin, kSkinColour, 0.2});
-  viz::writeSurfacesPng(layers, path, {});
-}
-
-// The whole model inside its translucent skin, the scan's own skin over it: where the patient ends and the
-// reference goes on.
-void renderCompletionPng(const ReferenceAnatomy& whole, const ReferenceAnatomy& scan, const std::string& path) {
-  std::vector<viz::SurfaceLayer> layers;
-  for (const ReferenceTissue& t : whole.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
-  layers.push_back({&whole.skin, kSkinColour, 0.15});
-  layers.push_back({&scan.skin, viz::Rgb{{90, 160, 230}}, 0.35});
-  viz::writeSurfacesPng(layers, path, {});
-}
-
-// The anatomy with the posed vertices of the rig's meshes (skin first, then the tissues in order).
-ReferenceAnatomy posedAnatomy(const ReferenceAnatomy& rest, const patient::PosedPatient& posed) {
-  ReferenceAnatomy anatomy = rest;
-  anatomy.skin.V = posed.meshes[0];
-  for (std::size_t t = 0; t < anatomy.tissues.size(); ++t) anatomy.tissues[t].mesh.V = posed.meshes[t + 1];
-  return anatomy;
-}
-
-nlohmann::json qualityReport(const patient::PosedPatient& posed) {
-  const posing::PoseQuality& q = posed.quality;
-  return {{"inverted_tets", q.inverted},
-          {"min_tet_volume_ratio", q.minVolumeRatio},
-          {"skin_volume_change_pct", q.skinVolumeChangePct},
-          {"tet_volume_change_pct", q.tetVolumeChangePct},
-          {"tissue_vertices_left_outside", q.leftOutside},
-          {"tissue_vertices_inside_at_rest", posed.tissueVerticesInsideAtRest},
-          {"untangled_tets", q.untangle.badBefore},
-          {"restore_max_move_mm", q.restore.maxMove}};
-}
-
-// DIR/posed/: the posed model (anatomy/ and patient.glb), the rig's posed tets and skeleton, the scan and
-// organ map re-posed.
-void writePosed(const PatientOptions& o, const patient::VirtualPatient& p, const patient::PosedPatient& posed,
-                const std::vector<Eigen::Isometry3d>& world, const std::string& dir, io::Report& report) {
-  fs::create_directories(dir);
-  const ReferenceAnatomy anatomy = posedAnatomy(p.model(), posed);
-  io::writeReferenceAnatomy(dir + "/anatomy", anatomy, {});
-  io::writeAnatomyGlb(dir + "/patient.glb", anatomy, {});
-  TetMesh tets = p.rig->rig.tets;
-  tets.V = posed.tets;
-  io::writeTetMesh(dir + "/tets.vtu", tets);
-  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(p.rig->rig.skeleton, world), {});
-  io::writeScan(dir + "/scan.nii.gz", posed.scan, {});
-  if (posed.organs) io::writeLabelMap(dir + "/organs.nii.gz", *posed.organs, {});
-  if (o.png) renderPng(anatomy, dir + "/patient.png");
-  nlohmann::json pose = qualityReport(posed);
-  pose["method"] = o.posing.method;
-  if (!o.pose.empty()) pose["angles"] = o.pose;
-  if (!o.motion.empty()) pose["motion"] = {{"file", o.motion}, {"frame", o.frame}};
-  report.metric("pose", pose);
-}
-
 // --pose's syntax and joint names, before the work: the whole model's rig has OpenSim's bodies
 // (posing/skeleton_from_bone_meshes.h); without the reference, the rig has the pelvis, the femurs and the
 // lumbar vertebrae of the organ map (posing/skeleton_from_bones.h).
@@ -171,133 +82,15 @@ ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
   return patient::buildFullBodyReference(sources, skeleton).anatomy;
 }
 
-// The completed skin with the fat and the vertices the scan's skin pulled; how the reference's bones met
-// the patient's labels.
-void writeCompletion(const patient::ReferenceCompletion& c, const patient::WholeModel& whole, const std::string& dir,
-                     io::Report& report) {
-  TriMesh skin = c.anatomy.skin;
-  skin.vertexAttributes.real["fat_thickness"] = c.fatThickness;
-  Eigen::VectorXi pulled(skin.V.rows());
-  for (Eigen::Index v = 0; v < pulled.size(); ++v) pulled[v] = c.pulled[std::size_t(v)];
-  skin.vertexAttributes.integer["pulled_by_scan"] = pulled;
-  io::writeTriMesh(dir + "/completed_skin.vtp", skin);
-  nlohmann::json groups = nlohmann::json::object(), bones = nlohmann::json::object();
-  for (const transfer::BoneGroupMap& g : c.transfer.transferred.boneGroups)
-    if (!std::isnan(g.targetRmsBeforeMm))
-      groups[g.group] = {{"labels_rms_before_mm", g.targetRmsBeforeMm}, {"labels_rms_after_mm", g.targetRmsAfterMm}};
-  for (const patient::RegisteredBone& b : whole.bones)
-    bones[b.tissue] = {{"label", b.label},
-                       {"vertices", b.registration.mesh.V.rows()},
-                       {"label_boundary_to_bone_mean_mm", b.registration.boundaryToMeshMeanMm},
-                       {"label_boundary_to_bone_max_mm", b.registration.boundaryToMeshMaxMm}};
-  report.metric("completion", {{"tissues", c.anatomy.tissues.size()},
-                               {"skin_vertices_pulled_by_scan", pulled.sum()},
-                               {"scan_skin_to_completed_mean_mm", c.registration.skinMeanDistance},
-                               {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance},
-                               {"bone_groups_on_labels", groups},
-                               {"bones_on_labels", bones}});
-}
-
-// Seed 000's rules on the whole model, in brief: whether each holds and its worst value and tissue.
-nlohmann::json rulesReport(const transfer::AnatomyRules& r, const ReferenceAnatomy& model) {
-  const auto name = [&](int t) { return t >= 0 ? model.tissues[std::size_t(t)].name : std::string(); };
-  nlohmann::json pairs = nlohmann::json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(r.interpenetration.pairs.size(), 10); ++i) {
-    const transfer::Interpenetration& p = r.interpenetration.pairs[i];
-    pairs.push_back({{"tissues", {name(p.a), name(p.b)}},
-                     {"depth_mm", p.depthMm},
-                     {"reference_depth_mm", std::isnan(p.referenceDepthMm) ? nlohmann::json() : nlohmann::json(p.referenceDepthMm)}});
-  }
-  return {{"hold", r.holds()},
-          {"outside", {{"holds", r.outside.holds}, {"vertices", r.outside.vertices}, {"outside", r.outside.outside},
-                       {"at_cut", r.outside.outsideAtCut}, {"worst_mm", r.outside.worstMm},
-                       {"worst_tissue", name(r.outside.worstTissue)}}},
-          {"folds", {{"holds", r.folds.holds}, {"jacobian_min", r.folds.jacobian.minimum},
-                     {"nonpositive_cells", r.folds.jacobian.nonPositiveCells}}},
-          {"symmetry", {{"holds", r.symmetry.holds}, {"worst_excess_mm", r.symmetry.worstExcessMm},
-                        {"worst_group", r.symmetry.worstGroup}}},
-          {"straightness", {{"holds", r.straightness.holds}, {"worst_excess", r.straightness.worstExcess},
-                            {"worst_bone", name(r.straightness.worstTissue)}}},
-          {"interpenetration", {{"holds", r.interpenetration.holds}, {"worst_mm", r.interpenetration.worstMm},
-                                {"worst_excess_mm", r.interpenetration.worstExcessMm}, {"deepest_pairs", pairs}}}};
-}
-
-// The pose asked for (posed world transforms of the rig's joints), or none.
-struct Pose {
-  std::vector<Eigen::Isometry3d> world;
-  patient::PosedPatient posed;
-};
-
-// Everything into `dir` (a fresh private folder): the anatomy, the skin with its fat, the tissue classes,
-// the rig, each fitted organ's markers and carried template, the posed patient, the report.
-void writeOutputs(const PatientOptions& o, const Image& scan, const patient::VirtualPatient& p,
-                  const std::optional<Pose>& pose, const std::string& dir, io::Report& report) {
-  const ReferenceAnatomy& model = p.model();
-  io::writeReferenceAnatomy(dir + "/anatomy", model, {});
-  io::writeAnatomyGlb(dir + "/patient.glb", model, {});
-  if (p.whole) io::writeReferenceAnatomy(dir + "/scan_anatomy", p.anatomy, {});
-  TriMesh skin = p.anatomy.skin;
-  skin.vertexAttributes.real["fat_thickness"] = p.fatThickness;
-  io::writeTriMesh(dir + "/skin_fat.vtp", skin);
-  io::writeLabelMap(dir + "/tissue_classes.nii.gz", p.tissueClasses);
-  viz::writeSliceOverlayPng(scan, p.tissueClasses, dir + "/tissue_classes.png");
-  nlohmann::json labelTissues = nlohmann::json::object(), fits = nlohmann::json::object();
-  for (const auto& [label, tissues] : p.whole ? p.whole->labelTissues : p.labelTissues)
-    for (const std::string& t : tissues) labelTissues[label].push_back("anatomy/" + io::tissueFile(t));
-  if (p.completion) writeCompletion(*p.completion, *p.whole, dir, report);
-  if (p.rules) report.metric("anatomy_rules", rulesReport(*p.rules, model));
-  if (p.rig) {
-    io::writeAnatomyRig(dir + "/rig", p.rig->rig, p.rig->meshes, {});
-    report.metric("hip_joints", {{"left", p.rig->hipLeft}, {"right", p.rig->hipRight}});
-    report.metric("rig", {{"tets", p.rig->rig.tets.T.rows()},
-                          {"tet_vertices", p.rig->rig.tets.V.rows()},
-                          {"joints", p.rig->rig.skeleton.joints.size()}});
-  } else {
-    report.metric("rig", {{"none", p.noRigBecause}});
-  }
-  if (!p.fits.empty()) fs::create_directories(dir + "/organs");
-  for (const patient::FittedOrgan& f : p.fits) {
-    const std::string stem = dir + "/organs/" + fs::path(io::tissueFile(f.organ)).stem().string();
-    io::writeMarkers(stem + "_markers.mrk.json", icpMarkers(f));
-    io::writeTriMesh(stem + "_template_fitted.obj", f.fit.carriedTemplate);
-    fits[f.organ] = fitReport(f);
-  }
-  report.metric("label_tissues", labelTissues);
-  report.metric("organ_fits", fits);
-  nlohmann::json separation = nlohmann::json::array();
-  for (const patient::OrganPairSeparation& s : p.organSeparation)
-    if (s.penetratingBefore > 0)
-      separation.push_back({{"organs", {p.fits[s.first].organ, p.fits[s.second].organ}},
-                            {"penetrating_vertices_before", s.penetratingBefore},
-                            {"penetrating_vertices_after", s.penetratingAfter},
-                            {"max_depth_before_mm", s.maxDepthBefore},
-                            {"max_depth_after_mm", s.maxDepthAfter},
-                            {"max_displacement_mm", s.maxDisplacement}});
-  report.metric("organ_separation", separation);
-  report.metric("tissues", model.tissues.size());
-  report.metric("skin_vertices", model.skin.V.rows());
-  report.metric("scan_skin_cut_vertices", p.anatomy.skinCutVertices.size());
-  report.metric("fat_thickness_mm", {{"mean", p.fatThickness.mean()}, {"max", p.fatThickness.maxCoeff()}});
-  for (const auto& [stage, seconds] : p.stageSeconds) report.stage(stage, seconds);
-  if (o.png) renderPng(model, dir + "/patient.png");
-  if (o.png && p.whole) renderCompletionPng(p.whole->anatomy, p.anatomy, dir + "/completed.png");
-  if (pose) writePosed(o, p, pose->posed, pose->world, dir + "/posed", report);
-  report.write(dir + "/report.json", {});
-}
-
 void runPatient(const PatientOptions& o) {
   if (o.organTable.size() && o.organs.empty()) throw UsageError("patient: --organ-table needs --organs");
-  if (fs::exists(o.out) && !o.common.force)
-    throw UsageError(o.out + " exists; pass --force to replace it");
-  if (fs::exists(o.out) && !fs::is_directory(o.out)) throw UsageError(o.out + " exists and is not a folder");
+  for (const std::string& input : {o.scan, o.organs, o.organTable, o.reference, o.motion, o.templates})
+    if (!input.empty()) protectInput(input);
+  checkOutputFolder(o.out, o.common.writeOptions());
   if (o.png && !viz::canRenderSurfaces()) throw UsageError("patient: --png needs a display (run under xvfb-run)");
   if (!o.pose.empty() && !o.motion.empty()) throw UsageError("patient: give --pose or --motion, not both");
   if (!posing::isSkinningMethod(o.posing.method)) throw UsageError("patient: --method must be lbs, dqs, cor or fem");
   if (!o.pose.empty()) checkPoseJoints(o);
-  for (const std::string& input : {o.scan, o.organs})
-    if (!input.empty() && fs::exists(input) && fs::exists(o.out) &&
-        fs::weakly_canonical(input).string().rfind(fs::weakly_canonical(o.out).string() + "/", 0) == 0)
-      throw UsageError("patient: " + input + " lies inside --out, which would be replaced");
   io::Report report("patient");
   report.input("scan", o.scan);
   if (!o.organs.empty()) report.input("organs", o.organs);
@@ -332,11 +125,15 @@ void runPatient(const PatientOptions& o) {
   }
   const patient::VirtualPatient p = patient::buildVirtualPatient(scan, organs ? &*organs : nullptr, templates,
                                                                  pipeline, o.scan, o.organs, &progress);
-  std::optional<Pose> pose;
+  std::optional<PatientPose> pose;
   if (!o.pose.empty() || motion) {
     if (!p.rig) throw BadInput(o.organs.empty() ? o.scan : o.organs, "cannot pose the patient: " + p.noRigBecause);
     const Skeleton& skeleton = p.rig->rig.skeleton;
     pose.emplace();
+    pose->method = o.posing.method;
+    pose->angles = o.pose;
+    pose->motion = o.motion;
+    pose->frame = o.frame;
     pose->world = motion ? RetargetedMotion(*motion, "", false, skeleton).pose(o.frame)
                          : posing::poseFromJointAngles(skeleton, posing::parseJointAngles(o.pose));
     progress.begin("pose", o.posing.method + " skinning, the scan re-posed");
@@ -345,7 +142,7 @@ void runPatient(const PatientOptions& o) {
   }
 
   writeFolderAtomically(o.out, o.common.writeOptions(),
-                        [&](const std::string& staged) { writeOutputs(o, scan, p, pose, staged, report); });
+                        [&](const std::string& staged) { writePatientFolder(scan, p, pose ? &*pose : nullptr, o.png, staged, report); });
   if (!o.common.report.empty()) o.common.finish(report);
 
   const ReferenceAnatomy& model = p.model();

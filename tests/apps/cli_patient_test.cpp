@@ -13,6 +13,7 @@
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/surface_samples.h"
 #include "vesalius/meshing/winding_mask.h"
+#include "vesalius/posing/posed_volume.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <gtest/gtest.h>
@@ -147,14 +148,25 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   EXPECT_EQ(again.exitCode, 0) << again.err;
   EXPECT_TRUE(fs::exists(posedAgain + "/liver.obj"));
   EXPECT_TRUE(fs::exists(posedAgain + "/hat_skull.obj"));
-  // The posed scan follows the model: the re-posed femur labels against the posed femurs, voxelized.
+  // The posed scan follows the model: the re-posed femur labels against the posed femurs voxelized, within
+  // the posed field of view (the model's femurs go on beyond the scan to the knees).
   const LabelMap posedOrgans = io::readLabelMap(out + "/posed/organs.nii.gz", kCtLabelTable);
   const ReferenceAnatomy posedModel = io::readReferenceAnatomy(out + "/posed/anatomy");
+  const TetMesh restTets = io::readTetMesh(out + "/rig/rig.vtu"), posedTets = io::readTetMesh(out + "/posed/tets.vtu");
+  LabelMap fieldOfView;
+  fieldOfView.labels = Grid<Label>(labels.labels.geometry, 1);
+  fieldOfView.table.add({1, "scan", {255, 255, 255}});
+  posing::PosedVolumeOptions onPosedGrid;
+  onPosedGrid.outputGeometry = posedOrgans.labels.geometry;
+  const LabelMap posedFieldOfView = posing::poseLabels(restTets.V, restTets.T, posedTets.V, fieldOfView, onPosedGrid);
   for (const auto& [label, bone] : {std::pair{"femur_left", "l_femur"}, std::pair{"femur_right", "r_femur"}}) {
     const auto t = std::find_if(posedModel.tissues.begin(), posedModel.tissues.end(),
                                 [&](const ReferenceTissue& x) { return x.name == bone; });
     ASSERT_NE(t, posedModel.tissues.end()) << bone;
-    const double dice = diceWithLabel(t->mesh, posedOrgans, posedOrgans.table.resolve(label));
+    const Grid<std::uint8_t> posedBone = segmentation::maskAnd(
+        meshing::windingNumberMask(t->mesh, posedOrgans.labels.geometry), segmentation::maskOf(posedFieldOfView.labels, 1));
+    const double dice =
+        segmentation::diceCoefficient(posedBone, segmentation::maskOf(posedOrgans.labels, posedOrgans.table.resolve(label)));
     std::cout << label << ": Dice of the re-posed label with the posed " << bone << " " << dice << '\n';
     EXPECT_GE(dice, 0.90) << label;
   }
@@ -167,7 +179,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
                                            "--method", "cor", "--quality-only", "--out", walk, "--progress", "none",
                                            "--report", walk + "/report.json"});
   ASSERT_EQ(frame.exitCode, 0) << frame.err;
-  const nlohmann::json& q = readJson(walk + "/report.json")["metrics"];
+  const nlohmann::json q = readJson(walk + "/report.json")["metrics"];
   std::cout << "whole model, frame 400: " << q.dump() << '\n';
   EXPECT_LT(std::abs(q["worst_skin_volume_change_pct"].get<double>()), 1.0);
   EXPECT_EQ(q["max_tissue_vertices_left_outside"].get<long>(), 0);
@@ -221,7 +233,7 @@ TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
   EXPECT_GT(boneVoxels, 0);
   EXPECT_LT(double(boneOutside), 0.001 * double(boneVoxels));
   // Posable without labels: the whole model's rig, from its own bones.
-  const nlohmann::json& m = readJson(out + "/report.json")["metrics"];
+  const nlohmann::json m = readJson(out + "/report.json")["metrics"];
   std::cout << "rig: " << m["rig"].dump() << '\n';
   EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
   EXPECT_EQ(m["rig"]["joints"].get<int>(), 14);
@@ -284,6 +296,17 @@ TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
                 "femur_left", out);
   expectRefused({"patient", "--scan", kCtScan, "--pose", "upperleg01.L=-30,0,0", "--out", out, "--progress", "none"},
                 2, "upperleg01.L", out);
+  // An output folder that holds an input is never replaced, --force or not, and is refused before any work.
+  const std::string holding = fresh("holding_input");
+  fs::create_directories(holding);
+  fs::copy_file(kCtScan, holding + "/ct.nii.gz");
+  const CommandResult held =
+      runVesalius({"patient", "--scan", holding + "/ct.nii.gz", "--out", holding, "--force", "--progress", "none"});
+  EXPECT_EQ(held.exitCode, 2) << held.err;
+  EXPECT_EQ(std::count(held.err.begin(), held.err.end(), '\n'), 1) << held.err;
+  expectContains(held.err, holding);
+  EXPECT_TRUE(fs::exists(holding + "/ct.nii.gz"));
+  EXPECT_EQ(fs::file_size(holding + "/ct.nii.gz"), fs::file_size(kCtScan));
   // An output folder that exists is kept without --force.
   fs::create_directories(out);
   std::ofstream(out + "/keep.txt") << "mine";
