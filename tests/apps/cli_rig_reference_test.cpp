@@ -34,10 +34,11 @@ namespace fs = std::filesystem;
 
 const std::string kData = VESALIUS_TESTDATA;
 
+// An empty folder for one test's outputs.
 std::string freshDir(const std::string& name) {
   const fs::path d = fs::path(outputDir()) / "rig-reference" / name;
   fs::remove_all(d);
-  fs::create_directories(d.parent_path());
+  fs::create_directories(d);
   return d.string();
 }
 
