@@ -13,6 +13,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
 #include <map>
@@ -187,29 +188,23 @@ TEST_F(AtomicFile, APlantedSymlinkIsNotFollowed) {
   fs::remove(victim);
 }
 
-// Issue 32, item 6: a child process writes slowly and is interrupted; no hidden temporary is left.
-// `nested`: the writer also fills a subfolder, as a multi-file output (a reference anatomy) does.
-void expectNoTemporaryAfterSignal(const fs::path& dir, int signal, bool nested = false) {
+// Forks a child whose `write(started)` begins a write that never ends: `started()` tells the parent and
+// waits for a signal. The parent runs `during()`, sends `signal` and returns the child's wait status, or
+// -1 after recording a failure.
+int signalledWhileWriting(int signal, const std::function<void(const std::function<void()>& started)>& write,
+                          const std::function<void()>& during) {
   int ready[2];
-  ASSERT_EQ(::pipe(ready), 0);
-  const std::string target = (dir / "th.nii.gz").string();
+  if (::pipe(ready) != 0) return ADD_FAILURE() << "pipe", -1;
   const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
+  if (child < 0) return ADD_FAILURE() << "fork", -1;
   if (child == 0) {
     ::close(ready[0]);
     installCleanupOnSignal();
     try {
-      writeAtomically(target, {}, [&](const std::string& tmp) {
-        writeFileBytes(tmp, std::string(1 << 20, 'v'));
-        if (nested) {
-          const fs::path tissues = fs::path(tmp).parent_path() / "tissues";
-          fs::create_directories(tissues / "bones");
-          writeFileBytes((tissues / "liver.obj").string(), "v 0 0 0\n");
-          writeFileBytes((tissues / "bones" / "femur.obj").string(), "v 0 0 0\n");
-        }
+      write([&] {
         const char byte = 1;
         if (::write(ready[1], &byte, 1) != 1) ::_exit(10);
-        for (;;) ::pause();  // a write that never ends; only the signal stops it
+        for (;;) ::pause();  // only the signal stops it
       });
     } catch (...) {
       ::_exit(11);
@@ -218,14 +213,39 @@ void expectNoTemporaryAfterSignal(const fs::path& dir, int signal, bool nested =
   }
   ::close(ready[1]);
   char byte = 0;
-  ASSERT_EQ(::read(ready[0], &byte, 1), 1) << "the child died before it started writing";
+  const bool started = ::read(ready[0], &byte, 1) == 1;
   ::close(ready[0]);
-  std::vector<std::string> during;
-  for (const auto& entry : fs::directory_iterator(dir)) during.push_back(entry.path().filename());
-  ASSERT_EQ(during.size(), 1u) << "the child's temporary folder is not there";
-  ASSERT_EQ(::kill(child, signal), 0);
+  if (!started) return ADD_FAILURE() << "the child died before it started writing", -1;
+  during();
+  if (::kill(child, signal) != 0) return ADD_FAILURE() << "kill", -1;
   int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  if (::waitpid(child, &status, 0) != child) return ADD_FAILURE() << "waitpid", -1;
+  return status;
+}
+
+// Issue 32, item 6: a child process writes slowly and is interrupted; no hidden temporary is left.
+// `nested`: the writer also fills a subfolder, as a multi-file output (a reference anatomy) does.
+void expectNoTemporaryAfterSignal(const fs::path& dir, int signal, bool nested = false) {
+  const std::string target = (dir / "th.nii.gz").string();
+  std::vector<std::string> during;
+  const int status = signalledWhileWriting(
+      signal,
+      [&](const std::function<void()>& started) {
+        writeAtomically(target, {}, [&](const std::string& tmp) {
+          writeFileBytes(tmp, std::string(1 << 20, 'v'));
+          if (nested) {
+            const fs::path tissues = fs::path(tmp).parent_path() / "tissues";
+            fs::create_directories(tissues / "bones");
+            writeFileBytes((tissues / "liver.obj").string(), "v 0 0 0\n");
+            writeFileBytes((tissues / "bones" / "femur.obj").string(), "v 0 0 0\n");
+          }
+          started();
+        });
+      },
+      [&] {
+        for (const auto& entry : fs::directory_iterator(dir)) during.push_back(entry.path().filename());
+      });
+  ASSERT_EQ(during.size(), 1u) << "the child's temporary folder is not there";
   EXPECT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
   if (WIFSIGNALED(status)) {
     EXPECT_EQ(WTERMSIG(status), signal);
@@ -325,33 +345,16 @@ TEST_F(AtomicFolder, ASignalHalfwayLeavesTheOldFolder) {
   writeFolderAtomically(target, {}, [](const std::string& staging) { writeSome(staging, 3); });
   const auto before = contents(target);
   for (const int signal : {SIGINT, SIGTERM}) {
-    int ready[2];
-    ASSERT_EQ(::pipe(ready), 0);
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      ::close(ready[0]);
-      installCleanupOnSignal();
-      try {
-        writeFolderAtomically(target, {true}, [&](const std::string& staging) {
-          writeSome(staging, 7);
-          const char byte = 1;
-          if (::write(ready[1], &byte, 1) != 1) ::_exit(10);
-          for (;;) ::pause();
-        });
-      } catch (...) {
-        ::_exit(11);
-      }
-      ::_exit(12);
-    }
-    ::close(ready[1]);
-    char byte = 0;
-    ASSERT_EQ(::read(ready[0], &byte, 1), 1) << "the child died before it started writing";
-    ::close(ready[0]);
-    const std::size_t during = listing().size();
-    ASSERT_EQ(::kill(child, signal), 0);
-    int status = 0;
-    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    std::size_t during = 0;
+    const int status = signalledWhileWriting(
+        signal,
+        [&](const std::function<void()>& started) {
+          writeFolderAtomically(target, {true}, [&](const std::string& staging) {
+            writeSome(staging, 7);
+            started();
+          });
+        },
+        [&] { during = listing().size(); });
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "exit status " << status;
     EXPECT_EQ(during, 2u);  // the folder and its staging folder
     EXPECT_EQ(listing(), std::vector<std::string>{"poses"});
