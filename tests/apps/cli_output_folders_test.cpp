@@ -78,6 +78,19 @@ void expectFailsLeavingAllAsItWas(const std::vector<std::string>& args, int code
   std::cout << r.err << "  " << before.size() << " entries before, " << after.size() << " after\n";
 }
 
+// The command fails the same way writing a new folder `out` and replacing an old one with --force: no
+// `out` after the first, the old folder byte-identical after the second.
+void expectAllOrNothing(std::vector<std::string> args, const std::string& dir, const std::string& out,
+                        const std::string& file, const std::string& problem) {
+  expectFailsLeavingAllAsItWas(args, 3, dir, file, problem);
+  EXPECT_FALSE(fs::exists(out));
+  writeOldFolder(out);
+  args.push_back("--force");
+  expectFailsLeavingAllAsItWas(args, 3, dir, file, problem);
+  EXPECT_EQ(readBytes(out + "/bones.txt"), "pelvis\nfemur_l\n");
+  EXPECT_EQ(readBytes(out + "/meshes/skin.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+}
+
 // `count` cubes of labels 1..count along x on a grid of `size` voxels; the last label's name is longer than
 // a file name may be, so that its mesh, written last, fails after the others were written.
 void writeLabels(const std::string& path, int size, int count) {
@@ -106,12 +119,7 @@ TEST(CliOutputFolders, SurfaceWithSeveralLabelsWritesAllOrNothing) {
     std::vector<std::string> args{"surface", "--labels", dir + "/labels.nii.gz", "--out", out, "--progress", "none"};
     for (int label = 1; label <= count; ++label) args.insert(args.end(), {"--label", std::to_string(label)});
     const std::string last = out + "/" + std::string(300, 'x') + ".vtp";
-    expectFailsLeavingAllAsItWas(args, 3, dir, last, "File name too long");
-    EXPECT_FALSE(fs::exists(out));
-    writeOldFolder(out);
-    args.push_back("--force");
-    expectFailsLeavingAllAsItWas(args, 3, dir, last, "File name too long");
-    EXPECT_EQ(readBytes(out + "/bones.txt"), "pelvis\nfemur_l\n");
+    expectAllOrNothing(args, dir, out, last, "File name too long");
   }
 }
 
@@ -125,12 +133,7 @@ TEST(CliOutputFolders, RigWritesAllOrNothing) {
   std::vector<std::string> args{"rig", "--skin", tissue, "--skeleton", kBody + "default.mhskel", "--voxel-size", "8",
                                 "--target-tets", "8000", "--no-cor-centres", "--tissue", dir + "/a/tissue.obj",
                                 "--tissue", dir + "/b/tissue.obj", "--out", out, "--progress", "none"};
-  expectFailsLeavingAllAsItWas(args, 3, dir, out, "two meshes share the file name meshes/tissue.obj");
-  EXPECT_FALSE(fs::exists(out));
-  writeOldFolder(out);
-  args.push_back("--force");
-  expectFailsLeavingAllAsItWas(args, 3, dir, out, "two meshes share the file name meshes/tissue.obj");
-  EXPECT_EQ(readBytes(out + "/meshes/skin.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  expectAllOrNothing(args, dir, out, out, "two meshes share the file name meshes/tissue.obj");
 }
 
 // An output folder that is an input, or holds one, is refused before any work, --force or not.
