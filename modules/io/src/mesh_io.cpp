@@ -122,7 +122,9 @@ std::optional<MeshKind> meshFileKind(const std::string& path) {
   throw BadInput(path, "holds VTK " + type + ", neither polydata (a surface) nor an unstructured grid (a tet mesh)");
 }
 
-TriMesh readTriMesh(const std::string& path) {
+namespace {
+
+TriMesh readTriMeshAsStored(const std::string& path) {
   const std::string ext = fileExtension(path);
   if (ext == ".stl") return parseStl(readBinaryFile(path), path);
   if (ext == ".obj") return parseObj(readTextFile(path), path);
@@ -146,6 +148,12 @@ TriMesh readTriMesh(const std::string& path) {
   }
   throw BadInput(path, "not a surface mesh extension " + std::string(kSurfaceExtensions));
 }
+
+}  // namespace
+
+// Every format's points merged the same way (STL's reader merges already, as its corners are all
+// separate), so a surface stored with per-face copies of its corners is read connected.
+TriMesh readTriMesh(const std::string& path) { return mergeCoincidentVertices(readTriMeshAsStored(path)); }
 
 TetMesh readTetMesh(const std::string& path) {
   const std::string ext = fileExtension(path);

@@ -1,5 +1,6 @@
 // STL, ASCII and binary (mesh_formats.h). STL stores each triangle with its own three corners; the
 // reader merges corners with exactly equal coordinates into shared vertices so the surface is connected.
+// mergeCoincidentVertices, which does that, lives here and serves every surface reader (mesh_io.cpp).
 #include "vesalius/core/error.h"
 #include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/text_file.h"
@@ -23,35 +24,29 @@ constexpr std::size_t kHeaderBytes = 80;
 constexpr std::size_t kPreambleBytes = 84;  // header + uint32 triangle count
 constexpr std::size_t kRecordBytes = 50;    // normal, 3 corners (12 float32) + uint16 attribute
 
-// Builds V and F from triangle corners, sharing corners whose coordinates are exactly equal.
+struct CoordinateHash {
+  std::size_t operator()(const std::array<double, 3>& key) const {
+    std::size_t h = 0;
+    for (double c : key) h = h * 1000003u ^ std::hash<double>()(c);
+    return h;
+  }
+};
+
+// Collects triangle corners, each its own vertex; mesh() shares corners with equal coordinates.
 class CornerMerger {
  public:
-  void addCorner(const Eigen::Vector3d& p) {
-    // Adding 0.0 turns -0.0 into +0.0, so the hash agrees with ==, which treats them as equal.
-    const std::array<double, 3> key{p.x() + 0.0, p.y() + 0.0, p.z() + 0.0};
-    const auto [it, inserted] = index_.try_emplace(key, static_cast<int>(index_.size()));
-    if (inserted) coordinates_.insert(coordinates_.end(), key.begin(), key.end());
-    corners_.push_back(it->second);
-  }
+  void addCorner(const Eigen::Vector3d& p) { coordinates_.insert(coordinates_.end(), p.data(), p.data() + 3); }
 
   TriMesh mesh() const {
     TriMesh mesh;
     mesh.V = detail::fromRows(coordinates_, 3);
-    mesh.F = detail::fromRows(corners_, 3);
-    return mesh;
+    mesh.F.resize(mesh.V.rows() / 3, 3);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) mesh.F.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
+    return mergeCoincidentVertices(mesh);
   }
 
  private:
-  struct Hash {
-    std::size_t operator()(const std::array<double, 3>& key) const {
-      std::size_t h = 0;
-      for (double c : key) h = h * 1000003u ^ std::hash<double>()(c);
-      return h;
-    }
-  };
-  std::unordered_map<std::array<double, 3>, int, Hash> index_;
   std::vector<double> coordinates_;
-  std::vector<int> corners_;
 };
 
 std::uint32_t readUint32(const char* bytes) {
@@ -240,6 +235,43 @@ std::string formatStlAscii(const TriMesh& mesh) {
     out += "    endloop\n  endfacet\n";
   }
   out += "endsolid SPACE=LPS\n";
+  return out;
+}
+
+TriMesh mergeCoincidentVertices(const TriMesh& mesh) {
+  // Adding 0.0 turns -0.0 into +0.0, so the hash agrees with ==, which treats them as equal.
+  std::unordered_map<std::array<double, 3>, int, CoordinateHash> index;
+  index.reserve(static_cast<std::size_t>(mesh.V.rows()));
+  Eigen::VectorXi merged(mesh.V.rows());  // old vertex -> new vertex
+  std::vector<int> first;                 // new vertex -> its first old vertex
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    const std::array<double, 3> key{mesh.V(i, 0) + 0.0, mesh.V(i, 1) + 0.0, mesh.V(i, 2) + 0.0};
+    const auto [it, inserted] = index.try_emplace(key, static_cast<int>(first.size()));
+    if (inserted) first.push_back(static_cast<int>(i));
+    merged(i) = it->second;
+  }
+  if (static_cast<Eigen::Index>(first.size()) == mesh.V.rows()) return mesh;
+
+  const Eigen::Map<const Eigen::VectorXi> keep(first.data(), static_cast<Eigen::Index>(first.size()));
+  TriMesh out;
+  out.V = mesh.V(keep, Eigen::all);
+  out.F = mesh.F.unaryExpr([&](int v) { return merged(v); });
+  out.UV = mesh.UV;
+  out.FUV = mesh.FUV;
+  out.faceAttributes = mesh.faceAttributes;
+  // A vertex attribute survives only if the merged points agree on it; values that differ (normals of
+  // a cube written per face) were per corner and no single vertex value can stand for them.
+  for (const auto& [name, values] : mesh.vertexAttributes.integer) {
+    bool agree = true;
+    for (Eigen::Index i = 0; agree && i < values.size(); ++i) agree = values(i) == values(first[merged(i)]);
+    if (agree) out.vertexAttributes.integer[name] = values(keep);
+  }
+  for (const auto& [name, values] : mesh.vertexAttributes.real) {
+    bool agree = true;
+    for (Eigen::Index i = 0; agree && i < values.rows(); ++i)
+      agree = values.row(i) == values.row(first[merged(i)]);
+    if (agree) out.vertexAttributes.real[name] = values(keep, Eigen::all);
+  }
   return out;
 }
 

@@ -42,7 +42,8 @@ const BadCase kCases[] = {
     {"mesh_no_vertices.mesh", true, "no 'Vertices' section"},
     {"mesh_hexahedra.mesh", true, "section 'Hexahedra' is not supported"},
     {"mesh_bad_node_index.msh", true, "line 10: bad node number 'x'"},
-    {"mesh_gmsh4.msh", true, "line 2: Gmsh format 4.1 is not supported"},
+    {"mesh_gmsh41_truncated.msh", true, "mesh_gmsh41_truncated.msh: line 100: file ends in node coordinates"},
+    {"mesh_gmsh41_binary.msh", true, "line 2: binary Gmsh files are not supported (save as ASCII"},
     {"mesh_hexahedron.vtu", true, "cell 0 is a hexahedron (VTK cell type 12); only tetrahedra are supported"},
     {"mesh_hexahedron.vtk", true, "cell 0 is a hexahedron"},
     {"mesh_strips.vtk", true, "holds VTK polydata, not an unstructured grid"},
@@ -72,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, BadMeshFile, testing::ValuesIn(kCases),
                          });
 
 TEST(BadMeshFile, UnknownExtensions) {
-  EXPECT_THROW(readTriMesh(badFile("mesh_gmsh4.msh")), BadInput);
+  EXPECT_THROW(readTriMesh(badFile("mesh_gmsh41_binary.msh")), BadInput);
   EXPECT_THROW(readTetMesh(badFile("mesh_face_out_of_range.obj")), BadInput);
   EXPECT_FALSE(meshFileKind("scan.nii.gz").has_value());
   EXPECT_EQ(meshFileKind(badFile("mesh_hexahedron.vtk")), MeshKind::kTetrahedral);

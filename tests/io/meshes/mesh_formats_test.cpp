@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <string>
+#include <utility>
 
 namespace vesalius::io {
 namespace {
@@ -245,7 +247,9 @@ TEST(GmshFormat, Version2RoundTrip) {
   TetMesh mesh = unitTet();
   mesh.V(3, 2) = 1.0 / 3.0;
   mesh.tetAttributes.integer[kLabel] = Eigen::VectorXi::Constant(1, 12);
-  const TetMesh read = parseGmsh(formatGmsh(mesh), "tet.msh");
+  const std::string text = formatGmsh(mesh, GmshVersion::k22);
+  ASSERT_EQ(text.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
+  const TetMesh read = parseGmsh(text, "tet.msh");
   EXPECT_EQ(read.V, mesh.V);
   EXPECT_EQ(read.T, mesh.T);
   EXPECT_EQ(read.F, mesh.F);
@@ -253,14 +257,201 @@ TEST(GmshFormat, Version2RoundTrip) {
   EXPECT_FALSE(read.tetAttributes.has(kRegion));
 }
 
-TEST(GmshFormat, RejectsVersion4AndBinary) {
-  try {
-    parseGmsh("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n", "new.msh");
-    FAIL() << "version 4 accepted";
-  } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("version 2 ASCII"), std::string::npos) << e.what();
+// An n x n x n grid of unit cubes, each cut into 6 positively oriented tets, with its boundary; tets
+// labelled by the octant-like slab they are in, boundary triangles by their face direction.
+TetMesh tetGrid(int n) {
+  TetMesh mesh;
+  const int side = n + 1;
+  mesh.V.resize(side * side * side, 3);
+  for (int z = 0; z < side; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) mesh.V.row((z * side + y) * side + x) << x * 1.5, y * 0.5, z / 3.0;
+  static const int kCube[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  mesh.T.resize(6 * n * n * n, 4);
+  Eigen::Index t = 0;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        for (const auto& tet : kCube) {
+          for (int c = 0; c < 4; ++c) {
+            const int corner = tet[c];
+            mesh.T(t, c) = ((z + (corner >> 2 & 1)) * side + y + (corner >> 1 & 1)) * side + x + (corner & 1);
+          }
+          ++t;
+        }
+  orientTetsPositively(mesh.V, mesh.T);
+  mesh.F = tetBoundary(mesh.T);
+  mesh.tetAttributes.integer[kLabel] = Eigen::VectorXi(mesh.T.rows());
+  for (Eigen::Index i = 0; i < mesh.T.rows(); ++i) mesh.tetAttributes.integer[kLabel](i) = 1 + int(i * 3 / mesh.T.rows());
+  mesh.faceAttributes.integer[kLabel] = Eigen::VectorXi(mesh.F.rows());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) mesh.faceAttributes.integer[kLabel](f) = 10 + int(f % 4);
+  return mesh;
+}
+
+void expectSameMesh(const TetMesh& read, const TetMesh& mesh) {
+  EXPECT_EQ(read.V, mesh.V);
+  EXPECT_EQ(read.T, mesh.T);
+  EXPECT_EQ(read.F, mesh.F);
+  EXPECT_EQ(read.tetAttributes.integer.at(kLabel), mesh.tetAttributes.integer.at(kLabel));
+  EXPECT_EQ(read.faceAttributes.integer.at(kLabel), mesh.faceAttributes.integer.at(kLabel));
+}
+
+TEST(GmshFormat, Version41RoundTripKeepsOrderAndTags) {
+  for (int n : {1, 2, 4}) {
+    TetMesh mesh = tetGrid(n);
+    mesh.V(0, 0) = 1.0 / 3.0;  // a coordinate that needs all 17 digits
+    const std::string text = formatGmsh(mesh);
+    ASSERT_EQ(text.rfind("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n", 0), 0u);
+    const TetMesh read = parseGmsh(text, "grid.msh");
+    std::cout << "grid " << n << ": " << mesh.V.rows() << " nodes, " << mesh.T.rows() << " tets, " << mesh.F.rows()
+              << " triangles, " << text.size() << " bytes\n";
+    expectSameMesh(read, mesh);
+    // Without elementary tags every entity is named by its physical tag.
+    EXPECT_EQ(read.tetAttributes.integer.at(kRegion), mesh.tetAttributes.integer.at(kLabel));
+    EXPECT_EQ(read.faceAttributes.integer.at(kRegion), mesh.faceAttributes.integer.at(kLabel));
+
+    // Elementary tags that name entities (one physical group each) come back as they were.
+    TetMesh withRegions = mesh;
+    withRegions.tetAttributes.integer[kRegion] = 100 + withRegions.tetAttributes.integer[kLabel].array();
+    withRegions.faceAttributes.integer[kRegion] = 7 * withRegions.faceAttributes.integer[kLabel];
+    const TetMesh readRegions = parseGmsh(formatGmsh(withRegions), "grid.msh");
+    expectSameMesh(readRegions, withRegions);
+    EXPECT_EQ(readRegions.tetAttributes.integer.at(kRegion), withRegions.tetAttributes.integer.at(kRegion));
+    EXPECT_EQ(readRegions.faceAttributes.integer.at(kRegion), withRegions.faceAttributes.integer.at(kRegion));
+
+    // And both versions agree on everything the mesh holds.
+    const TetMesh viaVersion2 = parseGmsh(formatGmsh(withRegions, GmshVersion::k22), "grid2.msh");
+    expectSameMesh(viaVersion2, readRegions);
   }
-  EXPECT_THROW(parseGmsh("$MeshFormat\n2.2 1 8\n$EndMeshFormat\n", "binary.msh"), BadInput);
+}
+
+TEST(GmshFormat, Version41UnlabelledAndEmptyMeshes) {
+  TetMesh bare = unitTet();  // no attributes at all
+  const TetMesh read = parseGmsh(formatGmsh(bare), "bare.msh");
+  EXPECT_EQ(read.V, bare.V);
+  EXPECT_EQ(read.T, bare.T);
+  EXPECT_EQ(read.F, bare.F);
+  EXPECT_FALSE(read.tetAttributes.has(kLabel));
+  EXPECT_FALSE(read.faceAttributes.has(kLabel));
+
+  TetMesh pointsOnly;
+  pointsOnly.V = bare.V;
+  const TetMesh readPoints = parseGmsh(formatGmsh(pointsOnly), "points.msh");
+  EXPECT_EQ(readPoints.V, pointsOnly.V);
+  EXPECT_EQ(readPoints.T.rows(), 0);
+
+  const TetMesh empty = parseGmsh(formatGmsh(TetMesh()), "empty.msh");
+  EXPECT_EQ(empty.V.rows(), 0);
+  EXPECT_EQ(empty.T.rows(), 0);
+}
+
+// The example of the manual's 4.1 section, reduced to its mesh: parametric nodes, a point element and
+// a line skipped, an entity with two physical groups (the first counts), tags not in file order.
+TEST(GmshFormat, Version41ByHand) {
+  const TetMesh mesh = parseGmsh(
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+      "$Entities\n1 1 1 1\n"
+      "1 0 0 0 0\n"
+      "1 0 0 0 1 0 0 0 0\n"
+      "5 0 0 0 1 1 0 2 7 3 0\n"
+      "2 0 0 0 1 1 1 1 9 0\n$EndEntities\n"
+      "$Nodes\n3 4 1 40\n"
+      "0 1 0 1\n40\n0 0 0\n"
+      "2 5 1 2\n10\n20\n1 0 0 0.5 0.5\n0 1 0 0.1 0.2\n"
+      "3 2 0 1\n30\n0 0 1\n$EndNodes\n"
+      "$Elements\n4 4 1 9\n"
+      "0 1 15 1\n9 40\n"
+      "1 1 1 1\n8 40 10\n"
+      "3 2 4 1\n2 40 20 10 30\n"
+      "2 5 2 1\n1 40 20 10\n$EndElements\n",
+      "hand.msh");
+  ASSERT_EQ(mesh.V.rows(), 4);
+  EXPECT_EQ(mesh.V.row(0), Eigen::RowVector3d(0, 0, 0));  // node 40
+  EXPECT_EQ(mesh.V.row(2), Eigen::RowVector3d(0, 1, 0));  // node 20, parametric u v skipped
+  ASSERT_EQ(mesh.T.rows(), 1);
+  EXPECT_GT(tetVolumes(mesh.V, mesh.T)(0), 0);  // reoriented
+  EXPECT_EQ(mesh.tetAttributes.integer.at(kLabel)(0), 9);
+  EXPECT_EQ(mesh.tetAttributes.integer.at(kRegion)(0), 2);
+  ASSERT_EQ(mesh.F.rows(), 1);
+  EXPECT_EQ(mesh.F.row(0), Eigen::RowVector3i(0, 2, 1));
+  EXPECT_EQ(mesh.faceAttributes.integer.at(kLabel)(0), 7);
+  EXPECT_EQ(mesh.faceAttributes.integer.at(kRegion)(0), 5);
+}
+
+TEST(GmshFormat, RejectsVersion40AndBinary) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"$MeshFormat\n4 0 8\n$EndMeshFormat\n", "line 2: Gmsh format 4 is not supported (save as version 4.1"},
+      {"$MeshFormat\n3.0 0 8\n$EndMeshFormat\n", "line 2: Gmsh format 3.0 is not supported"},
+      {"$MeshFormat\n4.1 1 8\n$EndMeshFormat\n", "line 2: binary Gmsh files are not supported"},
+      {"$MeshFormat\n2.2 1 8\n$EndMeshFormat\n", "line 2: binary Gmsh files are not supported"}};
+  for (const auto& [text, expected] : cases) {
+    try {
+      parseGmsh(text, "new.msh");
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("new.msh: ") + expected), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Every cut of a valid 4.1 file at a line break, and files whose counts or references lie, must give a
+// BadInput naming the file; none may crash or allocate what the header claims.
+TEST(GmshFormat, Version41HostileInput) {
+  const std::string good = formatGmsh(tetGrid(1));
+  int cuts = 0;
+  for (std::size_t end = good.find('\n'); end + 1 < good.size(); end = good.find('\n', end + 1)) {
+    const std::string cut = good.substr(0, end + 1);
+    if (cut.size() < 40) continue;  // the $MeshFormat section alone: a valid file without nodes
+    ++cuts;
+    try {
+      parseGmsh(cut, "cut.msh");
+      ADD_FAILURE() << "accepted a cut after " << cut.size() << " bytes";
+    } catch (const BadInput& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("cut.msh", 0), 0u) << e.what();
+    }
+  }
+  std::cout << cuts << " cuts refused\n";
+  EXPECT_GT(cuts, 50);
+
+  const std::string head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  const std::string entities = "$Entities\n0 0 0 1\n1 0 0 0 1 1 1 0 0\n$EndEntities\n";
+  const std::string nodes = "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n";
+  const std::pair<std::string, const char*> cases[] = {
+      {head + "$Nodes\n1 99999999999 1 4\n", "line 5: bad node count 99999999999 for a file of"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 4000000\n", "line 6: bad node count of the block 4000000"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 5\n", "node blocks hold more than the 4 nodes of the header"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n$EndNodes\n", "line 13: section ends early"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n2\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n",
+       "node tag 2 used twice"},
+      {head + "$Nodes\n1 4 1 4\n3 1 2 4\n", "line 6: parametric flag 2"},
+      {head + "$Nodes\n1 4 1 4\n7 1 0 4\n", "line 6: entity dimension 7"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n",
+       "node blocks hold 3 nodes, the header says 4"},
+      {head + "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 nan\n$EndNodes\n",
+       "line 14: bad node coordinate 'nan'"},
+      {head + nodes + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 9\n$EndElements\n", "node 9 is not in the node section"},
+      {head + nodes + "$Elements\n1 1 1 1\n3 1 5 1\n1 1 2 3 4 1 2 3 4\n$EndElements\n",
+       "element type 5 (hexahedron) is not supported"},
+      {head + nodes + "$Elements\n1 1 1 1\n3 1 2 1\n1 1 2 3\n$EndElements\n", "triangles on an entity of dimension 3"},
+      {head + nodes + "$Elements\n1 2 1 2\n3 1 4 1\n1 1 2 3 4\n$EndElements\n",
+       "element blocks hold 1 elements, the header says 2"},
+      {head + nodes + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4 5\n$EndElements\n", "unexpected '5'"},
+      {head + entities + nodes + "$Elements\n1 1 1 1\n3 2 4 1\n1 1 2 3 4\n$EndElements\n",
+       "entity 2 of dimension 3, which $Entities does not list"},
+      {head + "$Entities\n0 0 0 99999999\n", "line 5: bad entity count 99999999"},
+      {head + "$Entities\n0 0 0 1\n1 0 0 0 1 1 1 5000000 1\n", "bad physical tag count 5000000"},
+      {head + "$Entities\n0 0 0 1\n1 0 0 0 1 1 1 0 0\n1 0 0 0 1 1 1 0 0\n", "line 7: expected $EndEntities"},
+      {head + "$Entities\n0 0 0 2\n1 0 0 0 1 1 1 0 0\n$EndEntities\n", "line 7: section ends early, in entity tag"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parseGmsh(text, "hostile.msh");
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("hostile.msh", 0), 0u) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -1,11 +1,15 @@
 // Real meshes from testdata/ read, written in every format, and read again (mesh_io.h): same counts,
 // same corner coordinates (orientation included), same uv and attributes where the format carries them.
 #include "vesalius/core/error.h"
+#include "vesalius/io/mesh_formats.h"
 #include "vesalius/io/mesh_io.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
+#include <iostream>
+#include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -168,6 +172,110 @@ TEST(SurfaceFiles, BodyQuadsUvAndGroups) {
   EXPECT_EQ(group(0), 0);
 }
 
+// A unit cube as vtkCubeSource makes it and Slicer's cube.vtk stores it: 24 points (each face its own 4
+// corners), 6 quads, per-point normals and texture coordinates.
+std::string perFaceCubeVtk(double side) {
+  static const int kFaces[6][4][3] = {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+                                      {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+                                      {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+  static const int kNormals[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  std::ostringstream points, polygons, normals, uv;
+  for (int f = 0; f < 6; ++f) {
+    polygons << "4";
+    for (int c = 0; c < 4; ++c) {
+      for (int k = 0; k < 3; ++k) points << (kFaces[f][c][k] - 0.5) * side << (k < 2 ? " " : "\n");
+      normals << kNormals[f][0] << " " << kNormals[f][1] << " " << kNormals[f][2] << "\n";
+      uv << (c == 1 || c == 2) << " " << (c >= 2) << "\n";
+      polygons << " " << 4 * f + c;
+    }
+    polygons << "\n";
+  }
+  return "# vtk DataFile Version 4.2\nvtk output\nASCII\nDATASET POLYDATA\nPOINTS 24 float\n" + points.str() +
+         "POLYGONS 6 30\n" + polygons.str() + "POINT_DATA 24\nNORMALS Normals float\n" + normals.str() +
+         "TEXTURE_COORDINATES TCoords 2 float\n" + uv.str();
+}
+
+TEST(SurfaceFiles, PointsDuplicatedPerFaceAreMerged) {
+  for (double side : {1.0, 2.5, 40.0}) {
+    const std::string path = output("per-face-cube-" + std::to_string(int(side * 10)) + ".vtk");
+    spit(path, perFaceCubeVtk(side));
+    const TriMesh cube = readTriMesh(path);
+    const TriMeshSummary s = summarize(cube);
+    std::cout << "per-face cube, side " << side << ": " << s.vertices << " vertices, " << s.components
+              << " component(s), " << s.boundaryEdges << " boundary edges, volume "
+              << (s.volume ? *s.volume : 0.0) << "\n";
+    EXPECT_EQ(s.vertices, 8);
+    EXPECT_EQ(s.triangles, 12);
+    EXPECT_EQ(s.components, 1);
+    ASSERT_TRUE(s.closed);
+    EXPECT_NEAR(*s.volume, side * side * side, 1e-9 * side * side * side);
+    // Each face keeps its own uv; the per-face normals cannot belong to a shared corner and are dropped.
+    ASSERT_EQ(cube.FUV.rows(), 12);
+    EXPECT_EQ(cube.UV.rows(), 24);
+    EXPECT_FALSE(cube.vertexAttributes.has("Normals"));
+  }
+}
+
+TEST(SurfaceFiles, MeshesWithoutDuplicatePointsAreReadUnchanged) {
+  TriMesh pelvis = readTriMesh(kPelvis);
+  pelvis.vertexAttributes.real["thickness"] = pelvis.V.col(2) * 3.5;
+  const TriMesh meshes[] = {readTriMesh(kLiverSurface), pelvis, readTriMesh(kBody)};
+  for (const TriMesh& mesh : meshes) {
+    const TriMesh merged = mergeCoincidentVertices(mesh);
+    EXPECT_EQ(merged.V, mesh.V);
+    EXPECT_EQ(merged.F, mesh.F);
+    EXPECT_EQ(merged.UV, mesh.UV);
+    EXPECT_EQ(merged.FUV, mesh.FUV);
+    expectSameAttributes(mesh.vertexAttributes, merged.vertexAttributes);
+    expectSameAttributes(mesh.faceAttributes, merged.faceAttributes);
+    // Through a VTK file, which keeps V as it is: same rows in the same order.
+    const std::string path = output("unchanged-" + std::to_string(mesh.V.rows()) + ".vtp");
+    writeTriMesh(path, mesh, options(true));
+    const TriMesh read = readTriMesh(path);
+    EXPECT_EQ(read.V, mesh.V);
+    EXPECT_EQ(read.F, mesh.F);
+  }
+}
+
+// Boxes of n x n quads per side with every triangle given its own corners: merging gives back the
+// closed box, 6 n^2 + 2 vertices, whatever n; vertex values that agree at a corner are kept.
+TEST(SurfaceFiles, ExplodedBoxesMergeToClosedSurfaces) {
+  for (int n : {1, 2, 5}) {
+    TriMesh exploded;
+    std::vector<Eigen::RowVector3d> corners;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int high = 0; high < 2; ++high)
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) {
+            auto at = [&](int a, int b) {
+              Eigen::RowVector3d p;
+              p(axis) = high;
+              p((axis + 1) % 3) = double(a) / n;
+              p((axis + 2) % 3) = double(b) / n;
+              return p;
+            };
+            const Eigen::RowVector3d q[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+            for (const auto& tri : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}})
+              for (int c : (high ? tri : std::array<int, 3>{tri[0], tri[2], tri[1]})) corners.push_back(q[c]);
+          }
+    exploded.V.resize(Eigen::Index(corners.size()), 3);
+    exploded.F.resize(exploded.V.rows() / 3, 3);
+    for (Eigen::Index i = 0; i < exploded.V.rows(); ++i) exploded.V.row(i) = corners[std::size_t(i)];
+    for (Eigen::Index f = 0; f < exploded.F.rows(); ++f) exploded.F.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
+    exploded.vertexAttributes.real["height"] = exploded.V.col(2);  // agrees at every shared corner
+    const TriMesh box = mergeCoincidentVertices(exploded);
+    const TriMeshSummary s = summarize(box);
+    std::cout << "exploded box n = " << n << ": " << exploded.V.rows() << " corners -> " << s.vertices
+              << " vertices, volume " << (s.volume ? *s.volume : 0.0) << "\n";
+    EXPECT_EQ(s.vertices, 6 * n * n + 2);
+    EXPECT_EQ(s.components, 1);
+    ASSERT_TRUE(s.closed);
+    EXPECT_NEAR(*s.volume, 1.0, 1e-12);
+    expectSameCorners(exploded, box, 0.0);
+    EXPECT_EQ(box.vertexAttributes.real.at("height"), box.V.col(2));
+  }
+}
+
 class SurfaceRoundTrip : public testing::TestWithParam<SurfaceFormat> {};
 
 TEST_P(SurfaceRoundTrip, Liver) { expectSurfaceRoundTrip(readTriMesh(kLiverSurface), "liver", GetParam()); }
@@ -256,6 +364,63 @@ TEST(TetFiles, LiverGmshVersion1) {
   EXPECT_EQ(liver.tetAttributes.integer.at(kRegion), Eigen::VectorXi::Ones(596));
 }
 
+// Real Gmsh 4.1 files (testdata/gmsh, written by Gmsh; see SOURCE.md there).
+TEST(TetFiles, Gmsh41CubeWithSubdomain) {
+  const TetMesh cube = readTetMesh(kData + "/gmsh/cube_oriented_sub.msh");
+  EXPECT_EQ(cube.V.rows(), 81);
+  EXPECT_EQ(cube.T.rows(), 184);
+  EXPECT_EQ(cube.F.rows(), 156);
+  EXPECT_EQ(cube.tetAttributes.integer.at(kLabel), Eigen::VectorXi::Constant(184, 25));
+  EXPECT_EQ(cube.tetAttributes.integer.at(kRegion), Eigen::VectorXi::Constant(184, 2));
+  EXPECT_EQ(cube.faceAttributes.integer.at(kLabel), Eigen::VectorXi::Constant(156, 26));
+  std::map<int, int> facesPerSurface;
+  for (int region : cube.faceAttributes.integer.at(kRegion)) ++facesPerSurface[region];
+  EXPECT_EQ(facesPerSurface, (std::map<int, int>{{7, 26}, {8, 26}, {9, 26}, {10, 26}, {11, 26}, {12, 26}}));
+  // The tets fill the inner cube [0.1, 0.6]^3 and the triangles are its faces, 26 on each side.
+  const TetMeshSummary s = summarize(cube);
+  std::cout << "cube_oriented_sub.msh: tet volume " << s.totalVolume << ", " << s.inverted << " inverted\n";
+  EXPECT_EQ(s.inverted, 0);
+  EXPECT_NEAR(s.totalVolume, 0.125, 1e-12);
+  EXPECT_NEAR(s.min.minCoeff(), 0.1, 1e-12);
+  EXPECT_NEAR(s.max.maxCoeff(), 0.6, 1e-12);
+  double area = 0;
+  for (Eigen::Index f = 0; f < cube.F.rows(); ++f) {
+    const Eigen::Vector3d a = cube.V.row(cube.F(f, 0)), b = cube.V.row(cube.F(f, 1)), c = cube.V.row(cube.F(f, 2));
+    area += (b - a).cross(c - a).norm() / 2;
+  }
+  std::cout << "  triangle area " << area << "\n";
+  EXPECT_NEAR(area, 6 * 0.25, 1e-12);
+
+  // Ours, read back: the same mesh (written in 4.1, Gmsh's default).
+  const std::string path = output("cube_oriented_sub.msh");
+  writeTetMesh(path, cube, options(false));
+  EXPECT_EQ(slurp(path).rfind("$MeshFormat\n4.1 0 8\n", 0), 0u);
+  const TetMesh read = readTetMesh(path);
+  EXPECT_EQ(read.V, cube.V);
+  EXPECT_EQ(read.T, cube.T);
+  EXPECT_EQ(read.F, cube.F);
+  expectSameAttributes(cube.tetAttributes, read.tetAttributes);
+  expectSameAttributes(cube.faceAttributes, read.faceAttributes);
+}
+
+TEST(TetFiles, Gmsh41TwoDimensionalWithLinesAndSparseTags) {
+  const TetMesh mesh = readTetMesh(kData + "/gmsh/tagged_gmsh4.msh");
+  EXPECT_EQ(mesh.V.rows(), 55);
+  EXPECT_EQ(mesh.T.rows(), 0);
+  EXPECT_EQ(mesh.F.rows(), 80);  // the 8 lines on curve 3 are skipped
+  EXPECT_EQ(mesh.faceAttributes.integer.at(kLabel), Eigen::VectorXi::Constant(80, 8));
+  EXPECT_EQ(mesh.faceAttributes.integer.at(kRegion), Eigen::VectorXi::Constant(80, 1));
+  // Node tag 1 is the 4th node of the file, (0, -0.3, 0); element 34 (the first triangle) is 12 16 15.
+  EXPECT_EQ(mesh.V.row(mesh.F(0, 0)), Eigen::RowVector3d(0.5, -0.3, 0));
+  double area = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    area += (b - a).cross(c - a).z() / 2;  // signed: all triangles counter-clockwise
+  }
+  std::cout << "tagged_gmsh4.msh: signed area " << area << "\n";
+  EXPECT_NEAR(area, 0.55, 1e-12);  // the polygon of SOURCE.md
+}
+
 class TetRoundTrip : public testing::TestWithParam<TetFormat> {};
 
 TEST_P(TetRoundTrip, Liver) {
@@ -275,7 +440,21 @@ TEST_P(TetRoundTrip, Liver) {
   if (f.label) {
     EXPECT_EQ(read.tetAttributes.integer.at(kLabel), liver.tetAttributes.integer.at(kLabel));
   }
-  if (f.region) {
+  if (f.region && std::string(f.ext) == ".msh") {
+    // Gmsh 4.1 names an entity by its elementary tag and gives it one set of physical groups; these
+    // regions span several labels, so each (region, label) pair becomes one entity numbered 1, 2, ...
+    // The pairs must survive one to one.
+    const Eigen::VectorXi &label = liver.tetAttributes.integer.at(kLabel), &region = liver.tetAttributes.integer.at(kRegion);
+    const Eigen::VectorXi& readRegion = read.tetAttributes.integer.at(kRegion);
+    std::map<std::pair<int, int>, std::set<int>> entities;
+    std::set<int> tags;
+    for (Eigen::Index t = 0; t < label.size(); ++t) {
+      entities[{region(t), label(t)}].insert(readRegion(t));
+      tags.insert(readRegion(t));
+    }
+    for (const auto& [pair, entity] : entities) EXPECT_EQ(entity.size(), 1u);
+    EXPECT_EQ(tags.size(), entities.size());
+  } else if (f.region) {
     EXPECT_EQ(read.tetAttributes.integer.at(kRegion), liver.tetAttributes.integer.at(kRegion));
   }
   if (f.vertexAttributes) expectSameAttributes(liver.vertexAttributes, read.vertexAttributes);

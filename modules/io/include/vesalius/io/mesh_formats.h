@@ -25,9 +25,10 @@
 //            integer "marker"; .ele first attribute -> tet integer kRegion, further ones -> tet
 //            real "attribute"; .face triangles -> F with face integer "marker".
 //   MEDIT    references -> integer kLabel of vertices, tets and triangles (Triangles -> F).
-//   Gmsh     v1 ($NOD/$ELM) and v2 ASCII ($Nodes/$Elements) read, v2 ASCII written. Physical tag ->
-//            integer kLabel, elementary tag -> integer kRegion, for tets (T) and triangles (F).
-//            Points and lines are skipped; other element types are rejected.
+//   Gmsh     v1 ($NOD/$ELM), v2 ASCII and v4.1 ASCII read; v4.1 ASCII written (v2.2 on request).
+//            Physical tag -> integer kLabel, elementary tag (in 4.1 the entity tag, the physical
+//            tag being the entity's first in $Entities) -> integer kRegion, for tets (T) and
+//            triangles (F). Points and lines are skipped; other element types are rejected.
 // An integer reference column that is zero everywhere (MEDIT references, Gmsh tags, TetGen regions and
 // markers) carries nothing and is not turned into an attribute; writers write 0 for a missing one.
 #pragma once
@@ -67,6 +68,14 @@ inline int orientTetsPositively(const MatrixX3d& V, MatrixX4i& T) {
   return swapped;
 }
 
+// The mesh with vertices of exactly equal coordinates (-0.0 equal to 0.0) made one, numbered in the order
+// of their first occurrence; F is renumbered, UV/FUV and face attributes are kept. A vertex attribute
+// is kept when the merged points agree on it and dropped when they do not (normals of a cube written per
+// face: per-corner values no single vertex value can stand for). A mesh without such vertices comes
+// back unchanged. Every surface reader applies it: files such as Slicer's cube.vtk store each face with
+// its own copies of the corners, which would otherwise be read as separate open pieces.
+TriMesh mergeCoincidentVertices(const TriMesh& mesh);
+
 // STL, ASCII or binary. Binary is recognised by its size (84 + 50 n bytes for n triangles in the
 // header), even when it begins with "solid"; anything else starting with "solid" is ASCII.
 TriMesh parseStl(std::string_view bytes, const std::string& source);
@@ -96,10 +105,16 @@ TetGenFiles formatTetGen(const TetMesh& mesh);
 TetMesh parseMedit(std::string_view text, const std::string& source);
 std::string formatMedit(const TetMesh& mesh);
 
-// Gmsh .msh v1 or v2 ASCII (binary v2 and v4 are rejected with a message saying so).
+// Gmsh .msh v1, v2 ASCII or v4.1 ASCII (binary files and v4.0 are rejected with a message saying so).
 TetMesh parseGmsh(std::string_view text, const std::string& source);
-// Gmsh v2.2 ASCII: nodes, then triangles (F), then tets (T), each with physical and elementary tags.
-std::string formatGmsh(const TetMesh& mesh);
+enum class GmshVersion { k22, k41 };
+// Gmsh ASCII: nodes, then triangles (F), then tets (T), each with physical and elementary tags. 4.1,
+// Gmsh's own default, unless asked for 2.2 (for readers that predate Gmsh 4). In 4.1 the elementary
+// tag names an entity: one per (elementary, physical) pair; elements without kRegion get the entity of
+// their physical tag (so they read back with kRegion equal to kLabel, the unlabelled ones with the
+// largest label + 1), and elementary tags that are not positive or span two physical groups are
+// renumbered 1, 2, ...
+std::string formatGmsh(const TetMesh& mesh, GmshVersion version = GmshVersion::k41);
 
 // Small pieces the format files share.
 namespace detail {
