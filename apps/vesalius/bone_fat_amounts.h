@@ -1,10 +1,10 @@
-// The fat editor of seed 000 §6 as `fat edit` and `transfer --fat-amounts` take it: per-bone fat amounts
-// from a JSON file ({"pelvis": 0.4, ...}; bones the file does not name get defaultAmount) spread over the
-// bounded biharmonic weights of the reference's bone groups (fat/bounded_biharmonic_weights.h) on a voxel
-// grid inside its skin.
+// Fat from per-bone amounts as `fat edit` and `transfer --fat-amounts` take it: a JSON file
+// ({"pelvis": 0.4, ...}) read for fat::boneFatFromAmounts (fat/bone_fat_amounts.h), what it took in the
+// report.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
+#include "vesalius/fat/bone_fat_amounts.h"
 #include "vesalius/io/report.h"
 
 #include <Eigen/Core>
@@ -13,16 +13,10 @@
 
 namespace vesalius::cli {
 
-struct BoneFatSettings {
-  double voxelSizeMm = 15;     // of the weights' grid: 10 mm takes minutes on the full body, 20 mm seconds
-  double maxThicknessMm = 50;  // the thickness an amount of 1 gives (the seed gives amounts no unit)
-  double defaultAmount = 0;    // of the bones the file does not name
-};
-
-// Thickness (mm, #V of reference.skin) = maxThicknessMm · Σ_j w_j · amount_j at the skin's vertices; what it
-// took goes into `report`. Throws BadInput naming amountsPath (unknown bone, bad JSON, negative amount) or
-// referencePath (no bones inside the skin), UsageError for bad numbers.
+// Thickness (mm, #V of reference.skin) from the amounts in `amountsPath`; options' sources are set to the
+// two paths. Throws as fat::boneFatFromAmounts, and BadInput naming amountsPath for a file that is not a
+// JSON object. Warns on stderr of bones with no voxel inside the skin.
 Eigen::VectorXd boneFatAtSkin(const ReferenceAnatomy& reference, const std::string& referencePath,
-                              const std::string& amountsPath, const BoneFatSettings& settings, io::Report& report);
+                              const std::string& amountsPath, fat::BoneFatAmountsOptions options, io::Report& report);
 
 }  // namespace vesalius::cli

@@ -218,7 +218,7 @@ void runTransfer(const TransferOptions& o) {
   std::string fatKind = "bone amounts";
   const Eigen::VectorXd fat = o.fatAmounts.empty()
                                   ? readThickness(o.fat, reference.skin, o.reference + "/" + "skin.obj", fatKind)
-                                  : boneFatAtSkin(reference, o.reference, o.fatAmounts, BoneFatSettings{}, report);
+                                  : boneFatAtSkin(reference, o.reference, o.fatAmounts, {}, report);
   report.parameter("fat_kind", fatKind);
 
   progress.begin("register", "skin registration (ICP with shape matching)");
