@@ -159,9 +159,9 @@ TEST(CliMarkersSuggest, SuggestionsLieOnTheLiverBoundaryMoreThanThePlacedTemplat
   std::cout << "within 2 mm of the liver label's boundary: " << withSearch << " of the suggestions, "
             << withoutBending << " of those without bending (--rounds 0), " << withoutSearch
             << " of the points on the placed template\n";
-  // Measured 0.91, 0.90 and 0.18 (docs/methods/marker-suggestions.md: 0.88-0.91 over seeds 1-4, mean
-  // 0.90; issue 5 aims at 0.9). Since the plateau check (session 18) the edge search alone is nearly as
-  // good as after bending (seeds 1-8: bending adds -0.01 to +0.05, mean +0.015): bending must not lose.
+  // What the method is held to (docs/methods/marker-suggestions.md): nine in ten within 2 mm of the organ's
+  // boundary. The edge search alone is nearly as good as after bending the template onto the edges; bending
+  // must not lose.
   EXPECT_GE(withSearch, 0.90) << "suggestions within 2 mm of the liver label's boundary";
   EXPECT_GE(withSearch, withoutBending) << "bending the template onto the edges loses suggestions";
   EXPECT_GE(withSearch - withoutSearch, 0.55) << "what the edge search adds to the placed template";

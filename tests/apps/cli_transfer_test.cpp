@@ -314,10 +314,8 @@ nlohmann::json fullBodyTransfer(const std::string& dir, const std::string& targe
             << ", deep vertices pushed out " << m["pushed_out_deep_vertices"] << "\n";
   // R6 for the reference itself, its skin's cavities (mouth, eye sockets) counted as inside, every unit of
   // bones moved inside by a similarity change and what is still outside then bent inside, at a limb's reach
-  // and then a toe's: none of its 30,751 tissue vertices outside its own skin (session 21; 10 toe vertices
-  // with the limb's reach alone, session 20; 1,016 with the similarity changes alone, session 19; 6,423
-  // before the bones were moved inside the skin, session 17). The cavities measure 264 ml (mouth 230 ml,
-  // eye sockets 2 x 12 ml at the grid's 2.5 mm voxels).
+  // and then a toe's: none of its 30,751 tissue vertices outside its own skin. The cavities measure 264 ml
+  // (mouth 230 ml, eye sockets 2 x 12 ml at the grid's 2.5 mm voxels).
   EXPECT_EQ(m["reference_outside_vertices"].get<long>(), 0);
   EXPECT_LE(m.value("reference_outside_vertices_hat_skull", 0L) + m.value("reference_outside_vertices_hat_jaw", 0L), 20);
   EXPECT_NEAR(m["reference_skin_cavities_ml"].get<double>(), 264.0, 30.0);
@@ -437,34 +435,27 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   // The joints stay together: where two bone groups' maps differ, a joint opens (measured at most 4.8 mm,
   // the elbow's radius from the humerus; the knee's patella closes by 6.6 mm).
   EXPECT_LT(widestJointOpening(reference, io::readReferenceAnatomy(dir + "/out")), 7.0);
-  // Measured (session 16, the articulated stage): hands 3.2 mm off their true place, forearms 10.0 mm, the
-  // rest of the skin 11.7 mm (ICP and shape matching alone: 60 mm and 35 mm).
+  // The registration's articulated stage brings the hands within 5 mm of their true place (MakeHuman's
+  // vertex i) and the forearms within 12 mm; ICP and shape matching alone leave 60 mm and 35 mm.
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(thin));
   EXPECT_LT(hands, 5.0);
   EXPECT_LT(forearms, 12.0);
-  // Rules R5, R6 and the field's folds. Measured (session 21, the reference's bones all inside its skin and
-  // what the bone maps leave outside the target bent inside, the final field's fixed cells at folds freed):
-  // no folded cell, fixed shells included (minimum 0.004, interior 0.113; 6,097 fixed cells freed in 29
-  // passes; before, 221 folded cells, all within 9 mm of the skin; session 16: 10 interior, -0.18); none of the 30,751 tissue vertices outside the target's skin (579 bent, toes
-  // 495; session 20, the limb's reach alone: 8 toe vertices; session 19: 1,113; session 16: 6,159); no
-  // vertex a voxel or more inside the reference skin ends outside the target's (session 16: 250).
+  // Rules R5, R6 and the field's folds (seed 000 §7-8): no folded cell, fixed shells included (the final
+  // field's fixed cells at folds are freed); none of the 30,751 tissue vertices outside the target's skin
+  // (what the bone maps leave outside is bent inside); no vertex a voxel or more inside the reference skin
+  // pushed out of the target's.
   EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
-  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too, since session 21
+  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too
   EXPECT_EQ(m["target_outside_vertices"].get<long>(), 0);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }
 
 // The same reference into the muscular MakeHuman body, whose chest is larger: the trunk's map grows
-// (determinant about 2), and with the skull in it (before session 15) it carried the skull into the face:
-// 213 folded interior cells, 199 of them in the head. Measured now (session 21, the reference's bones all
-// inside its skin, what the bone maps leave outside bent inside, the final field free where two groups'
-// bones meet): no fold (minimum 0.044; 2 folds, -0.12, at L5 on the sacrum while bone vertices there fixed
-// the field; session 16: 39, -0.72); none of the 30,751 tissue vertices outside the target's skin (583
-// bent, toes 533; session 20: 4 toe vertices; session 19: 1,098; session 16: 6,110); no deep vertex pushed
-// out (session 16: 222); the hands' skin 1.3 mm off its true place, the forearms' 11.1 mm. R1 holds
-// since the long bones' maps keep their width to their length (session 19, fitLongBoneMap): the arms'
-// affine maps had taken in the muscle (determinants humerus 2.5, radius 2.6, ulna 3.4) and bowed the
-// forearm bones' centre lines to 5.7-6.2 % of their length (reference 4.0-4.3 %).
+// (determinant about 2); the skull is kept out of it (in it, the trunk's map would carry the skull into the
+// face). The same rules as for the thin body: no folded cell, no tissue vertex outside the target's skin, no
+// deep vertex pushed out. R1 holds because the long bones' maps keep their width to their length
+// (fitLongBoneMap): an arm's affine map would take in the muscle (determinants 2.5-3.4) and bow the forearm
+// bones' centre lines beyond the reference's.
 TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
   const std::string dir = freshDir("full-body-muscular");
   const ReferenceAnatomy reference = fullBodyReference(dir);
@@ -478,25 +469,15 @@ TEST(CliTransfer, FullBodyIntoTheMuscularBody) {
   EXPECT_LT(hands, 4.0);
   EXPECT_LT(forearms, 13.0);
   EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
-  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too, since session 21
+  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too
   EXPECT_EQ(m["target_outside_vertices"].get<long>(), 0);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }
 
 // The thin body voxelized at 4 mm and surfaced anew, a target of its own topology (about 15,000 vertices):
 // the registration, articulated stage included, sees only its surface. The thin body's vertex i is still
-// the truth for the check. Measured (session 16): hands 4.7 mm off their true place, forearms 11.7 mm, the
-// rest of the skin 10.4 mm (ICP and shape matching alone, measured apart: 63, 40 and 7.7 in the trunk).
-// Session 17 (bone maps kept inside, the reference's bones moved inside its skin): 3 deep vertices pushed
-// out (session 16: 255, ribs and scapulae 140, spine 109), 1 folded interior cell (14; minimum -0.03
-// against -0.15), 2,665 of 30,751 tissue vertices outside the target (6,045): as on the thin body's own
-// mesh. The moved reference alone (session 16's bone maps): 88, 64 folds, 3,102. Session 19 (the skins'
-// cavities counted as inside, the skull moved inside, the long bones' maps): 5 deep vertices pushed out,
-// of the skull (0 before the skull was moved inside the reference skin), no folded interior cell (minimum
-// 0.007), 673 tissue vertices outside the target. Session 21 (the reference's bones all inside its skin,
-// what the bone maps leave outside bent inside): no deep vertex pushed out, no folded interior cell
-// (minimum 0.057), none of the tissue vertices outside the target (192 bent: toes 104, skull 20, torso 17;
-// session 20, the limb's reach alone: 7 toe vertices).
+// the truth for the check. The same rules as on the thin body's own mesh: no folded cell, no tissue vertex
+// outside the target's skin, no deep vertex pushed out.
 TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   const std::string dir = freshDir("full-body-remeshed");
   const ReferenceAnatomy reference = fullBodyReference(dir);
@@ -512,7 +493,7 @@ TEST(CliTransfer, FullBodyIntoARemeshedThinBody) {
   EXPECT_LT(hands, 6.5);
   EXPECT_LT(forearms, 13.5);
   EXPECT_EQ(m["jacobian_interior_nonpositive_cells"].get<long>(), 0);
-  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too, since session 21
+  EXPECT_EQ(m["jacobian_nonpositive_cells"].get<long>(), 0);  // the fixed shells' too
   EXPECT_EQ(m["target_outside_vertices"].get<long>(), 0);
   EXPECT_LE(m["pushed_out_deep_vertices"].get<long>(), 2);
 }
