@@ -6,6 +6,7 @@
 #include "common.h"
 #include "landmark_pairs.h"
 #include "thickness_input.h"
+#include "transfer_outputs.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/body_axes.h"
@@ -15,8 +16,9 @@
 #include "vesalius/patient/transfer_into_body.h"
 #include "vesalius/transfer/anatomy_rules.h"
 #include "vesalius/transfer/anatomy_transfer.h"
-#include "vesalius/transfer/articulated_registration.h"
+#include "vesalius/transfer/reference_skin_registration.h"
 #include "vesalius/transfer/skin_registration.h"
+#include "vesalius/transfer/transfer_rules.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <chrono>
@@ -55,140 +57,7 @@ std::vector<transfer::SkinLandmark> readSkinLandmarks(const TransferOptions& o, 
   if (o.referenceLandmarks.empty()) return {};
   const LandmarkPairs pairs = pairLandmarks(o.referenceLandmarks, o.targetLandmarks);
   if (pairs.labels.empty()) throw BadInput(o.referenceLandmarks, "holds no defined landmark with a partner");
-  std::vector<transfer::SkinLandmark> landmarks;
-  for (Eigen::Index p = 0; p < pairs.first.rows(); ++p) {
-    Eigen::Index vertex = 0;
-    (skin.V.rowwise() - pairs.first.row(p)).rowwise().squaredNorm().minCoeff(&vertex);
-    landmarks.push_back({int(vertex), pairs.second.row(p).transpose()});
-  }
-  return landmarks;
-}
-
-// The reference skin onto a target skin: §4's ICP with shape matching, after the articulated stage unless
-// --registration plain (articulated_registration.h), with the landmarks if any.
-transfer::SkinRegistration registerReferenceSkin(const ReferenceAnatomy& reference, const transfer::SkinParts& parts,
-                                                 const MatrixX3d& Vt, const MatrixX3i& Ft, const TransferOptions& o,
-                                                 const std::vector<transfer::SkinLandmark>& landmarks = {}) {
-  transfer::ArticulatedRegistrationOptions options;
-  options.registration.iterations = o.registrationIterations;
-  if (o.registration == "plain")
-    return transfer::registerSkin(reference.skin.V, reference.skin.F, Vt, Ft, options.registration, landmarks);
-  return transfer::registerSkinArticulated(reference.skin.V, reference.skin.F, parts, Vt, Ft, options, landmarks)
-      .registration;
-}
-
-// Per tissue, the metric `prefix` + NAME where a count is not zero.
-template <class Count>
-void perTissue(const ReferenceAnatomy& anatomy, const transfer::AnatomyRules& rules, const std::string& prefix,
-               Count count, io::Report& report) {
-  for (std::size_t t = 0; t < rules.tissues.size(); ++t)
-    if (const long n = count(rules.tissues[t])) report.metric(prefix + anatomy.tissues[t].name, n);
-}
-
-// The anatomical rules (transfer/anatomy_rules.h) in the report: the transferred anatomy against the
-// reference, each measured on the body the pipeline made of its skin (`body`: the registered skin's, with
-// its cavities), `deepMm` one field voxel; R1 and R2 also for the interpolated bones (the skin's field
-// alone, the seed's Fig. 4 left), beside each bone group's map.
-transfer::AnatomyRules reportRules(const ReferenceAnatomy& reference, const patient::TransferIntoBody& into,
-                                   const meshing::BodyDistance& body, double deepMm, io::Report& report) {
-  const transfer::TransferredAnatomy& result = into.transferred;
-  transfer::AnatomyRulesOptions options;
-  options.skinDistance = &body.signedDistance;
-  options.skinCavities = &body.cavities;
-  options.referenceSkinDistance = &into.referenceBody.signedDistance;
-  options.referenceSkinCavities = &into.referenceBody.cavities;
-  options.deepMm = deepMm;
-  const transfer::AnatomyRules rules = transfer::checkAnatomyRules(reference, into.anatomy, &result.finalField, options);
-  ReferenceAnatomy interpolated = into.anatomy;
-  for (std::size_t t = 0; t < interpolated.tissues.size(); ++t) interpolated.tissues[t].mesh.V = result.interpolated[t];
-  transfer::AnatomyRulesOptions bones;
-  bones.outside = bones.folds = bones.interpenetration = false;
-  const transfer::AnatomyRules step1 = transfer::checkAnatomyRules(reference, interpolated, nullptr, bones);
-
-  // R5, R6.
-  const transfer::OutsideRule& o = rules.outside;
-  report.metric("reference_skin_cavities_ml", into.referenceBody.cavitiesMl);
-  report.metric("target_skin_cavities_ml", body.cavitiesMl);
-  report.metric("tissue_vertices", o.vertices);
-  report.metric("reference_outside_vertices", o.referenceOutside);
-  report.metric("target_outside_vertices", o.outside);
-  report.metric("target_outside_worst_mm", o.worstMm);
-  report.metric("reference_outside_at_cut_vertices", o.referenceOutsideAtCut);
-  report.metric("target_outside_at_cut_vertices", o.outsideAtCut);
-  report.metric("reference_in_cavities_vertices", o.referenceInCavities);
-  report.metric("target_in_cavities_vertices", o.inCavities);
-  report.metric("pushed_out_vertices", o.pushedOut);
-  report.metric("pushed_out_worst_mm", o.pushedOutWorstMm);
-  report.metric("pushed_out_deep_vertices", o.pushedOutDeep);
-  report.metric("deep_means_mm", deepMm);
-  using Row = transfer::TissueRules;
-  perTissue(reference, rules, "reference_outside_vertices_", [](const Row& r) { return r.referenceOutside; }, report);
-  perTissue(reference, rules, "reference_in_cavities_vertices_", [](const Row& r) { return r.referenceInCavities; }, report);
-  perTissue(reference, rules, "target_in_cavities_vertices_", [](const Row& r) { return r.inCavities; }, report);
-  perTissue(reference, rules, "pushed_out_vertices_", [](const Row& r) { return r.pushedOut; }, report);
-  perTissue(reference, rules, "pushed_out_deep_vertices_", [](const Row& r) { return r.pushedOutDeep; }, report);
-
-  // The final field's folds.
-  const transfer::JacobianSummary& jacobian = rules.folds.jacobian;
-  const auto point = [](const Eigen::Vector3d& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
-  report.metric("jacobian_min", jacobian.minimum);
-  report.metric("jacobian_nonpositive_cells", jacobian.nonPositiveCells);
-  report.metric("jacobian_min_at", point(jacobian.whereMinimum));
-  report.metric("jacobian_interior_min", jacobian.interiorMinimum);
-  report.metric("jacobian_interior_min_at", point(jacobian.whereInteriorMinimum));
-  report.metric("jacobian_interior_nonpositive_cells", jacobian.interiorNonPositiveCells);
-
-  // R1, R2 per bone group, with its map and bend.
-  nlohmann::json groups = nlohmann::json::array();
-  for (const transfer::BoneGroupMap& group : result.boneGroups) {
-    nlohmann::json g{{"group", group.group}, {"symmetric", group.symmetric}, {"rms_to_attractor_mm", group.rmsToAttractorMm},
-                     {"determinant", group.map.A.determinant()}, {"bent_vertices", group.bend.outsideBefore},
-                     {"bend_largest_mm", group.bend.largestMoveMm}, {"outside_after_bend", group.bend.outsideAfter}};
-    for (std::size_t s = 0; s < rules.symmetry.groups.size(); ++s)
-      if (rules.symmetry.groups[s].group == group.group)
-        g["mirror_asymmetry_mm"] = {{"reference", rules.symmetry.groups[s].referenceAsymmetryMm},
-                                    {"interpolated", step1.symmetry.groups[s].asymmetryMm},
-                                    {"registered", rules.symmetry.groups[s].asymmetryMm}};
-    for (const int t : group.tissues)
-      if (!std::isnan(rules.tissues[std::size_t(t)].centreLineDeviation))
-        g["centre_line_deviation"][reference.tissues[std::size_t(t)].name] = {
-            {"reference", rules.tissues[std::size_t(t)].referenceCentreLineDeviation},
-            {"interpolated", step1.tissues[std::size_t(t)].centreLineDeviation},
-            {"registered", rules.tissues[std::size_t(t)].centreLineDeviation}};
-    groups.push_back(g);
-  }
-  report.metric("bone_groups", groups);
-
-  // Tissues into one another, beyond the reference's own overlap.
-  const transfer::InterpenetrationRule& p = rules.interpenetration;
-  nlohmann::json pairs = nlohmann::json::array();
-  for (const transfer::Interpenetration& pair : p.pairs)
-    pairs.push_back({{"tissues", {reference.tissues[std::size_t(pair.a)].name, reference.tissues[std::size_t(pair.b)].name}},
-                     {"depth_mm", pair.depthMm}, {"reference_depth_mm", pair.referenceDepthMm},
-                     {"vertices", pair.vertices}, {"at", point(pair.at)}});
-  report.metric("interpenetrating_pairs", pairs);
-  report.metric("interpenetration_worst_mm", p.worstMm);
-  report.metric("interpenetration_worst_excess_mm", p.worstExcessMm);
-  report.metric("rules_hold", {{"outside", o.holds}, {"folds", rules.folds.holds}, {"symmetry", rules.symmetry.holds},
-                               {"straightness", rules.straightness.holds}, {"interpenetration", p.holds}});
-  return rules;
-}
-
-void renderPng(const ReferenceAnatomy& anatomy, const std::vector<MatrixX3d>& tissueVertices, const TriMesh& skin,
-               const std::string& path, const WriteOptions& write) {
-  std::vector<TriMesh> meshes;
-  for (std::size_t t = 0; t < anatomy.tissues.size(); ++t) {
-    meshes.push_back(anatomy.tissues[t].mesh);
-    meshes.back().V = tissueVertices[t];
-  }
-  std::vector<viz::SurfaceLayer> layers;
-  for (std::size_t t = 0; t < meshes.size(); ++t) {
-    layers.push_back({&meshes[t], tissueKindColour(anatomy.tissues[t].kind), 1.0});
-  }
-  layers.push_back({&skin, kSkinColour, 0.2});
-  viz::SurfaceRenderOptions options;
-  options.write = write;
-  viz::writeSurfacesPng(layers, path, options);
+  return transfer::landmarksAtNearestVertices(skin.V, pairs.first, pairs.second);
 }
 
 void runTransfer(const TransferOptions& o) {
@@ -226,7 +95,11 @@ void runTransfer(const TransferOptions& o) {
   const transfer::SkinParts parts = transfer::skinPartsFromBones(reference);
   report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
   const std::vector<transfer::SkinLandmark> landmarks = readSkinLandmarks(o, reference.skin);
-  const transfer::SkinRegistration registered = registerReferenceSkin(reference, parts, target.V, target.F, o, landmarks);
+  transfer::ReferenceSkinRegistrationOptions registration;
+  registration.registration.registration.iterations = o.registrationIterations;
+  registration.articulated = o.registration != "plain";
+  const transfer::SkinRegistration registered =
+      transfer::registerReferenceSkin(reference, parts, target.V, target.F, registration, landmarks);
   endStage("skin registration");
   progress.end();
   report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
@@ -257,8 +130,6 @@ void runTransfer(const TransferOptions& o) {
   }
   const transfer::TransferredAnatomy& result = into.transferred;
   const GridGeometry& grid = into.grid;
-  TriMesh eroded = reference.skin;
-  eroded.V = into.erodedSkin;
   start = std::chrono::steady_clock::now();
   report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
   const auto iterations = [](const transfer::DisplacementField& f) {
@@ -267,27 +138,22 @@ void runTransfer(const TransferOptions& o) {
   report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
   report.metric("unfold_passes", result.finalField.unfoldPasses);
   report.metric("unfold_released_cells", result.finalField.releasedCells);
-  // The registered skin's body: the eroded one is that unless fat was eroded.
-  const transfer::AnatomyRules rules = reportRules(
-      reference, into, into.eroded ? meshing::bodySignedDistance(into.anatomy.skin) : into.erodedBody, o.voxelSize, report);
+  // The rules on the body the pipeline made of the registered skin (with its cavities): the eroded one is
+  // that unless fat was eroded; a vertex one field voxel inside the reference's skin counts as deep.
+  const meshing::BodyDistance body =
+      into.eroded ? meshing::bodySignedDistance(into.anatomy.skin) : into.erodedBody;
+  transfer::AnatomyRulesOptions rulesOptions;
+  rulesOptions.skinDistance = &body.signedDistance;
+  rulesOptions.skinCavities = &body.cavities;
+  rulesOptions.referenceSkinDistance = &into.referenceBody.signedDistance;
+  rulesOptions.referenceSkinCavities = &into.referenceBody.cavities;
+  rulesOptions.deepMm = o.voxelSize;
+  const transfer::TransferRules checked = transfer::checkTransferRules(reference, into.anatomy, result, rulesOptions);
+  reportTransferRules(reference, into, checked, body, o.voxelSize, report);
+  const transfer::AnatomyRules& rules = checked.rules;
   endStage("checks");
 
-  const ReferenceAnatomy& out = into.anatomy;
-  // The sub-fat surface (the seed's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
-  io::writeReferenceAnatomy(o.out, out, o.common.writeOptions(), {{"eroded_skin.obj", eroded}});
-  report.output("anatomy", o.out);
-  report.output("eroded_skin", (fs::path(o.out) / "eroded_skin.obj").string());
-  if (!o.png.empty()) {
-    // The result, and the reference beside it under the same name with "_reference".
-    renderPng(out, result.tissues, out.skin, o.png, o.common.writeOptions());
-    std::vector<MatrixX3d> rest;
-    for (const ReferenceTissue& t : reference.tissues) rest.push_back(t.mesh.V);
-    const fs::path png(o.png);
-    const std::string referencePng = (png.parent_path() / (png.stem().string() + "_reference" + png.extension().string())).string();
-    renderPng(reference, rest, reference.skin, referencePng, o.common.writeOptions());
-    report.output("png", o.png);
-    report.output("png_reference", referencePng);
-  }
+  writeTransferOutputs(reference, into, o.out, o.png, o.common.writeOptions(), report);
   endStage("writing");
   std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
             << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
