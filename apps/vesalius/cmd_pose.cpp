@@ -106,12 +106,14 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
 // Prints the worst value of each measure over all poses (with its frame) and puts it into the report.
 void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
                         long insideAtRest, io::Report& report) {
-  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0;
-  long repairedTotal = 0, boneOnly = 0, unrepaired = 0;
+  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0, boneMove = 0;
+  long repairedTotal = 0, boneOnly = 0, unrepaired = 0, released = 0;
   for (std::size_t p = 0; p < quality.size(); ++p) {
     repairedTotal += quality[p].untangle.badBefore;
     boneOnly += quality[p].untangle.fixedBad;
     unrepaired += quality[p].untangle.badAfter;
+    released += quality[p].untangle.releasedBoneVertices;
+    if (quality[p].untangle.maxBoneMove > quality[boneMove].untangle.maxBoneMove) boneMove = p;
     if (quality[p].untangle.badBefore > quality[repaired].untangle.badBefore) repaired = p;
     if (quality[p].untangle.maxMove > quality[move].untangle.maxMove) move = p;
     if (quality[p].restore.maxMove > quality[restoreMove].restore.maxMove) restoreMove = p;
@@ -142,12 +144,17 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
   report.metric("max_untangle_move_mm", quality[move].untangle.maxMove);
   report.metric("untangle_unrepaired_tets", unrepaired);
   report.metric("untangle_bone_only_tets", boneOnly);
+  report.metric("untangle_released_bone_vertices", released);
+  report.metric("max_untangle_bone_move_mm", quality[boneMove].untangle.maxBoneMove);
   std::cout << "untangled " << repairedTotal << " tets below " << posing::UntangleOptions().minVolumeRatio
             << " of their rest volume in all, at most "
             << quality[repaired].untangle.badBefore << " in a pose (frame " << frame(repaired)
             << "); moved vertices by up to " << quality[move].untangle.maxMove << " mm (frame " << frame(move)
             << "); " << unrepaired << " still below after, of which " << boneOnly
             << " have only bone vertices (nothing to move)\n";
+  if (released > 0)
+    std::cout << "folds pressed between bones freed " << released << " bone vertices in all, moved by up to "
+              << quality[boneMove].untangle.maxBoneMove << " mm (frame " << frame(boneMove) << ")\n";
 }
 
 // The rest-pose volumes to re-pose, read once for all poses.

@@ -170,9 +170,9 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     std::cout << label << ": Dice of the re-posed label with the posed " << bone << " " << dice << '\n';
     EXPECT_GE(dice, 0.90) << label;
   }
-  // Frame 400 of the shipped CMU walk on the whole model's rig (CMU's names onto OpenSim's bodies): the
-  // skin's volume within 1 % and no tissue vertex left outside. Its inverted tets (the left elbow flexed
-  // sharply) are printed, not asserted: docs/virtual-patient.md, Not yet.
+  // Frame 400 of the shipped CMU walk on the whole model's rig (CMU's names onto OpenSim's bodies), the left
+  // elbow flexed sharply: seed 001's claims, no inverted tet, the skin's volume within 1 %, no tissue vertex
+  // left outside.
   const std::string walk = fresh("demo_frame_400");
   const CommandResult frame = runVesalius({"pose", "--anatomy", out + "/rig", "--motion",
                                            std::string(VESALIUS_TESTDATA) + "/motion/01_01.bvh", "--frame", "400",
@@ -181,6 +181,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   ASSERT_EQ(frame.exitCode, 0) << frame.err;
   const nlohmann::json q = readJson(walk + "/report.json")["metrics"];
   std::cout << "whole model, frame 400: " << q.dump() << '\n';
+  EXPECT_EQ(q["max_inverted_tets"].get<long>(), 0);
   EXPECT_LT(std::abs(q["worst_skin_volume_change_pct"].get<double>()), 1.0);
   EXPECT_EQ(q["max_tissue_vertices_left_outside"].get<long>(), 0);
 }
@@ -199,6 +200,9 @@ TEST(CliPatient, PosedByAFrameOfAMotion) {
   const nlohmann::json pose = readJson(out + "/report.json")["metrics"]["pose"];
   std::cout << "frame 400: " << pose.dump() << '\n';
   EXPECT_EQ(pose["motion"]["frame"], 400);
+  // Seed 001's claims.
+  EXPECT_EQ(pose["inverted_tets"].get<long>(), 0);
+  EXPECT_LT(std::abs(pose["skin_volume_change_pct"].get<double>()), 1.0);
   EXPECT_EQ(pose["tissue_vertices_left_outside"].get<long>(), 0);
   // The posed femur label follows its posed bone mesh.
   const LabelMap posedOrgans = io::readLabelMap(out + "/posed/organs.nii.gz", kCtLabelTable);

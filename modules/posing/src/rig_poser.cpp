@@ -7,6 +7,7 @@
 #include "vesalius/posing/linear_blend_skinning.h"
 #include "vesalius/posing/skeleton_pose.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace vesalius::posing {
@@ -52,6 +53,25 @@ RigPoser::Repairs RigPoser::skinTets(const std::vector<Eigen::Isometry3d>& world
   Repairs repairs;
   if (restore_) repairs.restore = (*restore_)(tets);
   if (untangle_) repairs.untangle = (*untangle_)(tets);
+  // The repair's moves lose volume (a fold pushed out of a joint); give it back once, then repair what that
+  // flattened.
+  if (restore_ && untangle_ && repairs.untangle.movedVertices > 0) {
+    const VolumeRestoreResult restore = (*restore_)(tets);
+    const UntangleResult untangle = (*untangle_)(tets);
+    repairs.restore.volumeChangeAfter = restore.volumeChangeAfter;
+    repairs.restore.errorAfter = restore.errorAfter;
+    repairs.restore.iterations += restore.iterations;
+    repairs.restore.cgIterations += restore.cgIterations;
+    repairs.restore.maxMove = std::max(repairs.restore.maxMove, restore.maxMove);
+    repairs.restore.seconds += restore.seconds;
+    repairs.untangle.badAfter = untangle.badAfter;
+    repairs.untangle.regions += untangle.regions;
+    repairs.untangle.movedVertices = std::max(repairs.untangle.movedVertices, untangle.movedVertices);
+    repairs.untangle.maxMove = std::max(repairs.untangle.maxMove, untangle.maxMove);
+    repairs.untangle.releasedBoneVertices += untangle.releasedBoneVertices;
+    repairs.untangle.maxBoneMove = std::max(repairs.untangle.maxBoneMove, untangle.maxBoneMove);
+    repairs.untangle.seconds += untangle.seconds;
+  }
   return repairs;
 }
 

@@ -205,9 +205,9 @@ TetUntangler::TetUntangler(const MatrixX3d& restV, const MatrixX4i& T, const Eig
     : restV_(restV), T_(T), fixed_(std::size_t(restV.rows())), options_(options) {
   const UntangleOptions& o = options;
   if (!(o.minVolumeRatio > 0 && o.minVolumeRatio < 1) || o.rings < 0 || o.maxRings < o.rings || !(o.theta >= 0) ||
-      !(o.theta <= 1) || o.maxRounds < 1 || o.maxIterations < 1 || o.history < 1)
+      !(o.theta <= 1) || o.maxRounds < 1 || o.maxIterations < 1 || o.history < 1 || o.releaseRounds < 0)
     throw UsageError("untangle: options out of range (0 < minVolumeRatio < 1, 0 <= rings <= maxRings, 0 <= theta "
-                     "<= 1, rounds, iterations and history >= 1)");
+                     "<= 1, rounds, iterations and history >= 1, releaseRounds >= 0)");
   restVolume_ = checkedRestVolumes("untangle", restV, T, boneOfVertex);
   for (Eigen::Index v = 0; v < restV.rows(); ++v) fixed_[std::size_t(v)] = boneOfVertex[v] >= 0;
   tetsOf_ = vertexTets(T, restV.rows());
@@ -239,45 +239,58 @@ UntangleResult TetUntangler::operator()(MatrixX3d& posedV) const {
   std::vector<int> bad = badTets(posedV, T_, restVolume_, options_.minVolumeRatio);
   result.badBefore = long(bad.size());
   const MatrixX3d skinned = posedV;
+  std::vector<bool> fixed = fixed_;  // less the bone vertices freed for folds between bones
   // A tet whose four corners are bone vertices (of two bones meeting) has nothing to move: left as it is.
   const auto movable = [&](std::vector<int> tets) {
     tets.erase(std::remove_if(tets.begin(), tets.end(),
                               [&](int t) {
                                 for (int c = 0; c < 4; ++c)
-                                  if (!fixed_[std::size_t(T_(t, c))]) return false;
+                                  if (!fixed[std::size_t(T_(t, c))]) return false;
                                 return true;
                               }),
                tets.end());
     return tets;
   };
   result.fixedBad = result.badBefore - long(movable(bad).size());
-  for (int rings = options_.rings; !(bad = movable(bad)).empty() && rings <= options_.maxRings; ++rings) {
-    std::vector<Region> regions;
-    for (std::vector<int>& free : freeRegions(bad, rings))
-      regions.emplace_back(restV_, T_, tetsOf_, std::move(free), posedV);
-    tbb::parallel_for(std::size_t(0), regions.size(),
-                      [&](std::size_t r) { untangleRegion(regions[r], options_, posedV); });
-    result.regions += long(regions.size());
-    bad = badTets(posedV, T_, restVolume_, options_.minVolumeRatio);
+  for (int release = 0;; ++release) {
+    for (int rings = options_.rings; !(bad = movable(bad)).empty() && rings <= options_.maxRings; ++rings) {
+      std::vector<Region> regions;
+      for (std::vector<int>& free : freeRegions(bad, rings, fixed))
+        regions.emplace_back(restV_, T_, tetsOf_, std::move(free), posedV);
+      tbb::parallel_for(std::size_t(0), regions.size(),
+                        [&](std::size_t r) { untangleRegion(regions[r], options_, posedV); });
+      result.regions += long(regions.size());
+      bad = badTets(posedV, T_, restVolume_, options_.minVolumeRatio);
+    }
+    if (bad.empty() || release == options_.releaseRounds) break;
+    for (int t : bad)
+      for (int c = 0; c < 4; ++c)
+        if (fixed[std::size_t(T_(t, c))]) {
+          fixed[std::size_t(T_(t, c))] = false;
+          ++result.releasedBoneVertices;
+        }
   }
   result.badAfter = long(badTets(posedV, T_, restVolume_, options_.minVolumeRatio).size());
   const Eigen::VectorXd moves = (posedV - skinned).rowwise().norm();
   result.movedVertices = long((moves.array() > 0).count());
   result.maxMove = moves.size() > 0 ? moves.maxCoeff() : 0.0;
+  for (Eigen::Index v = 0; v < moves.size(); ++v)
+    if (fixed_[std::size_t(v)]) result.maxBoneMove = std::max(result.maxBoneMove, moves[v]);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
 // The vertices of the bad tets grown by `rings` rings of tets, less the fixed ones, split into groups that
 // share no tet: each is one region, solved on its own.
-std::vector<std::vector<int>> TetUntangler::freeRegions(const std::vector<int>& bad, int rings) const {
+std::vector<std::vector<int>> TetUntangler::freeRegions(const std::vector<int>& bad, int rings,
+                                                        const std::vector<bool>& fixed) const {
   std::vector<int> corners;
   for (int t : bad)
     for (int c = 0; c < 4; ++c) corners.push_back(T_(t, c));
   std::vector<int> all = vertexRings(T_, tetsOf_, corners, rings);
-  std::vector<int> parent(fixed_.size(), -1);
+  std::vector<int> parent(fixed.size(), -1);
   for (int v : all)
-    if (!fixed_[std::size_t(v)]) parent[std::size_t(v)] = v;
+    if (!fixed[std::size_t(v)]) parent[std::size_t(v)] = v;
   for (int v : all)
     for (const int* t = tetsOf_.begin(v); parent[std::size_t(v)] >= 0 && t != tetsOf_.end(v); ++t)
       for (int c = 0; c < 4; ++c) {
@@ -286,7 +299,7 @@ std::vector<std::vector<int>> TetUntangler::freeRegions(const std::vector<int>& 
       }
   std::sort(all.begin(), all.end());
   std::vector<std::vector<int>> regions;
-  std::vector<int> regionOfRoot(fixed_.size(), -1);
+  std::vector<int> regionOfRoot(fixed.size(), -1);
   for (int v : all) {
     if (parent[std::size_t(v)] < 0) continue;
     int& r = regionOfRoot[std::size_t(findRoot(parent, v))];

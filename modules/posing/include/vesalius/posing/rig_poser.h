@@ -2,7 +2,8 @@
 // and its meshes at rest, embedded once in the rest tets. Each pose then costs one skinning of the tets (LBS,
 // DQS, CoR or the co-rotational FEM reference), the restoration of the volume it loses or gains
 // (volume_restoration.h), the local repair of the tets it inverts or flattens (untangle_tets.h; both our
-// additions to the seed, on unless turned off) and one carrying of the embedded meshes. `vesalius pose`,
+// additions to the seed, on unless turned off; when the repair moved vertices, the volume its moves lost is
+// restored once more and what that flattened repaired) and one carrying of the embedded meshes. `vesalius pose`,
 // `vesalius patient --pose` and the viewer `vesalius-poser` all pose through it, so the viewer shows what
 // the commands write.
 // Deviation from §3.5: skinning and carrying run on the CPU (TBB inside the skinners), not on the GPU.
@@ -40,7 +41,8 @@ class RigPoser {
   // world: posed world transforms of the rig's joints. Writes the #V by 3 posed tet vertices into `tets`
   // (kept by a caller posing many frames). method: lbs, dqs, cor or fem (UsageError otherwise; BadInput
   // for cor on a rig without centres of rotation). Returns what the restoration and the repair did (all zero
-  // for a step that is off).
+  // for a step that is off). Over both rounds of repair: the volume and bad tets after the last, the largest
+  // move of a round, the sums of steps, regions, freed bone vertices and seconds.
   struct Repairs {
     VolumeRestoreResult restore;
     UntangleResult untangle;

@@ -19,7 +19,12 @@
 // reference shape is the rest tet (the skinned one is itself inverted). A region still bad after its solve is
 // grown by one ring and solved again, up to `maxRings`. The minimisation stops as soon as every tet of the
 // region reaches minVolumeRatio, within a round if need be (the paper iterates to convergence of the energy,
-// which would pull the vertices further from the skinned shape, towards the rest shapes).
+// which would pull the vertices further from the skinned shape, towards the rest shapes). A tet still bad at
+// maxRings lies in a fold pressed between bone vertices (a sharply bent elbow brings the bone regions of the
+// tets, which are coarser than the bones, close enough that no place of the free vertices between them is
+// valid): the bone vertices of its corners are freed and its region solved again, up to `releaseRounds` times.
+// Those vertices are on the rim of a bone region, so the bone's inner vertices still move rigidly; the result
+// reports how many were freed and how far they moved.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -41,6 +46,7 @@ struct UntangleOptions {
   int maxRounds = 40;     // ε steps per region solve
   int maxIterations = 50;   // L-BFGS iterations per round
   int history = 8;        // L-BFGS pairs kept
+  int releaseRounds = 3;  // times the bone corners of tets still bad at maxRings are freed (0: never)
 };
 
 struct UntangleResult {
@@ -50,6 +56,8 @@ struct UntangleResult {
   long regions = 0;        // region solves (connected groups of free vertices), over all ring sizes
   long movedVertices = 0;  // vertices that moved
   double maxMove = 0;      // largest distance a vertex moved, units of V (mm)
+  long releasedBoneVertices = 0;  // bone vertices freed because a fold pressed between bones needed them
+  double maxBoneMove = 0;         // largest distance one of those moved (mm); 0 if none was freed
   double seconds = 0;      // wall time of the repair, for reports
 };
 
@@ -58,8 +66,9 @@ struct UntangleResult {
 class TetUntangler {
  public:
   // restV: #V by 3 rest positions, T: #T by 4 positively oriented tets, boneOfVertex: #V, −1 for a free vertex
-  // and ≥ 0 for a bone vertex (never moved). Throws BadInput if a tet refers to a missing vertex or is flat or
-  // inverted at rest, or boneOfVertex is not #V long; UsageError for options out of range.
+  // and ≥ 0 for a bone vertex (moved only when freed, see releaseRounds). Throws BadInput if a tet refers to a
+  // missing vertex or is flat or inverted at rest, or boneOfVertex is not #V long; UsageError for options out
+  // of range.
   TetUntangler(const MatrixX3d& restV, const MatrixX4i& T, const Eigen::VectorXi& boneOfVertex,
                const UntangleOptions& options = {});
 
@@ -72,7 +81,8 @@ class TetUntangler {
                           double epsilon, double theta, Eigen::Matrix<double, 4, 3>* gradient = nullptr);
 
  private:
-  std::vector<std::vector<int>> freeRegions(const std::vector<int>& bad, int rings) const;
+  std::vector<std::vector<int>> freeRegions(const std::vector<int>& bad, int rings,
+                                            const std::vector<bool>& fixed) const;
 
   MatrixX3d restV_;
   MatrixX4i T_;
