@@ -151,9 +151,17 @@ TriMesh readTriMeshAsStored(const std::string& path) {
 
 }  // namespace
 
-// Every format's points merged the same way (STL's reader merges already, as its corners are all
-// separate), so a surface stored with per-face copies of its corners is read connected.
-TriMesh readTriMesh(const std::string& path) { return mergeCoincidentVertices(readTriMeshAsStored(path)); }
+// A surface stored with per-face copies of its corners is read connected (STL's reader merges always, as its
+// corners are all separate). Only such surfaces are merged: an open surface whose boundary the merge
+// shortens. A closed surface, or one whose vertex numbers carry meaning (a reference's skin, MakeHuman's
+// vertex i), keeps every vertex even where two happen to lie at the same point.
+TriMesh readTriMesh(const std::string& path) {
+  TriMesh stored = readTriMeshAsStored(path);
+  const long boundary = countEdges(stored.F).boundary;
+  if (boundary == 0) return stored;
+  TriMesh merged = mergeCoincidentVertices(stored);
+  return countEdges(merged.F).boundary < boundary ? merged : stored;
+}
 
 TetMesh readTetMesh(const std::string& path) {
   const std::string ext = fileExtension(path);

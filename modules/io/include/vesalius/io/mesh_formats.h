@@ -72,8 +72,9 @@ inline int orientTetsPositively(const MatrixX3d& V, MatrixX4i& T) {
 // of their first occurrence; F is renumbered, UV/FUV and face attributes are kept. A vertex attribute
 // is kept when the merged points agree on it and dropped when they do not (normals of a cube written per
 // face: per-corner values no single vertex value can stand for). A mesh without such vertices comes
-// back unchanged. Every surface reader applies it: files such as Slicer's cube.vtk store each face with
-// its own copies of the corners, which would otherwise be read as separate open pieces.
+// back unchanged. readTriMesh applies it to an open surface whose boundary it shortens: files such as
+// Slicer's cube.vtk store each face with its own copies of the corners, which would otherwise be read as
+// separate open pieces. A closed surface keeps its vertices (their numbers may carry meaning).
 TriMesh mergeCoincidentVertices(const TriMesh& mesh);
 
 // STL, ASCII or binary. Binary is recognised by its size (84 + 50 n bytes for n triangles in the
