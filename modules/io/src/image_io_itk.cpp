@@ -121,6 +121,13 @@ T headerField(const unsigned char* header, std::size_t offset, bool swapped) {
   return value;
 }
 
+// A byte count computed from header numbers, saturated: a header may claim more bytes than 64 bits count
+// (it is then as truncated as one that claims 2^64 - 1), and converting such a double is undefined.
+std::uint64_t byteCount(double bytes) {
+  constexpr double kTwoTo64 = 18446744073709551616.0;
+  return bytes < kTwoTo64 ? std::uint64_t(bytes) : std::numeric_limits<std::uint64_t>::max();
+}
+
 // Field offsets of the two header versions; the NIfTI-2 fields are 64-bit.
 template <class DimType, class PixdimType, class OffsetType>
 NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t dimAt, std::size_t bitpixAt,
@@ -141,9 +148,9 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
         double(headerField<PixdimType>(header, pixdimAt + (n + 1) * sizeof(PixdimType), swapped));
   const double bitpix = headerField<std::int16_t>(header, bitpixAt, swapped);
   const double offset = double(headerField<OffsetType>(header, offsetAt, swapped));
-  if (singleFile && bitpix > 0 && offset >= 0) layout.dataEnd = std::uint64_t(offset + voxels * bitpix / 8);
+  if (singleFile && bitpix > 0 && offset >= 0) layout.dataEnd = byteCount(offset + voxels * bitpix / 8);
   layout.datatype = headerField<std::int16_t>(header, bitpixAt - 2, swapped);
-  layout.voxOffset = offset >= 0 ? std::uint64_t(offset) : 0;
+  layout.voxOffset = offset >= 0 ? byteCount(offset) : 0;
   for (int n = 0; n < layout.axes; ++n) layout.size[n] = std::int64_t(std::max(dim(n + 1), 1.0));
   layout.swapped = swapped;
   return layout;
@@ -318,14 +325,17 @@ void checkGeometryNumbers(const std::string& path, const std::string& field, con
                                (positive ? " (each must be a positive number of mm)" : " (must be a finite number)"));
 }
 
-// `key: value` lines of a NRRD header up to its blank line (`#` lines are comments).
-void checkNrrdHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return;  // ITK reports unreadable files
-  std::string line;
-  int dimension = 0, lines = 0;
+// `key: value` lines of a NRRD header up to its blank line (`#` lines are comments); `headerBytes`: where
+// the data of a file with attached data begins.
+std::map<std::string, std::string> nrrdFields(const std::string& path, std::uint64_t& headerBytes) {
   std::map<std::string, std::string> fields;
+  headerBytes = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fields;  // ITK reports unreadable files
+  std::string line;
+  int lines = 0;
   while (std::getline(in, line) && ++lines < 4096) {
+    headerBytes += line.size() + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) break;
     if (line[0] == '#') continue;
@@ -333,6 +343,13 @@ void checkNrrdHeader(const std::string& path) {
     if (colon == std::string::npos || line.compare(colon, 3, ":=") == 0) continue;
     fields[trimmed(line.substr(0, colon))] = trimmed(line.substr(colon + 2));
   }
+  return fields;
+}
+
+void checkNrrdHeader(const std::string& path) {
+  std::uint64_t headerBytes = 0;
+  std::map<std::string, std::string> fields = nrrdFields(path, headerBytes);
+  int dimension = 0;
   if (fields.count("dimension")) dimension = std::atoi(fields["dimension"].c_str());
   // A 4-D file's non-spatial axis (vector components) has the spacing "nan" by the NRRD standard.
   if (fields.count("spacings") && dimension <= 3)
@@ -369,9 +386,26 @@ std::map<std::string, std::string> metaImageFields(const std::string& path, std:
   return fields;
 }
 
+// MetaIO sizes its reads by DimSize but ITK sizes the image by NDims: NDims = 0 over DimSize = 4 3 2 makes
+// MetaIO write 24 voxels into a buffer of one (a heap overflow). So DimSize must hold NDims positive whole
+// numbers.
+void checkMetaImageDimensions(const std::string& path, const std::map<std::string, std::string>& fields) {
+  const auto ndims = fields.find("NDims"), dimSize = fields.find("DimSize");
+  if (ndims == fields.end() || dimSize == fields.end()) throw BadInput(path, "MetaImage header without NDims or DimSize");
+  const std::vector<double> count = headerNumbers(ndims->second), sizes = headerNumbers(dimSize->second);
+  if (count.size() != 1 || !(count[0] >= 1 && count[0] <= 10) || count[0] != std::floor(count[0]))
+    throw BadInput(path, "NDims is '" + ndims->second + "' (must be a whole number from 1 to 10)");
+  if (sizes.size() != std::size_t(count[0]))
+    throw BadInput(path, "DimSize holds " + std::to_string(sizes.size()) + " numbers but NDims is " + ndims->second);
+  for (const double size : sizes)
+    if (!(size >= 1 && size == std::floor(size)))
+      throw BadInput(path, "DimSize holds " + shortNumber(size) + " (each must be a positive whole number)");
+}
+
 void checkMetaImageHeader(const std::string& path) {
   std::uint64_t headerBytes = 0;
   const std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
+  checkMetaImageDimensions(path, fields);
   for (const char* key : {"ElementSpacing", "ElementSize"})
     if (fields.count(key)) checkGeometryNumbers(path, key, headerNumbers(fields.at(key)), true);
   for (const char* key : {"Offset", "Origin", "Position", "TransformMatrix", "Rotation", "Orientation"})
@@ -379,6 +413,82 @@ void checkMetaImageHeader(const std::string& path) {
 }
 
 void checkMetaImageBytes(const std::string& path);
+
+// The bytes of stored data a file's voxels come from (the file after its header, or its one data file)
+// and how many voxel bytes each can give at most: 1 raw, 8 as text (a value of up to 8 bytes takes a
+// digit and a separator), 1032 through zlib/gzip (deflate's largest ratio), about 1.2e6 through bzip2
+// (its run-length stage and block sort). Empty when the data is spread over files or encoded otherwise.
+struct StoredData {
+  std::uint64_t bytes = 0;
+  double expansion = 1;
+};
+
+std::uint64_t sizeOfDataFile(const std::string& headerPath, const std::string& dataFile) {
+  const std::filesystem::path data = std::filesystem::path(headerPath).parent_path() / dataFile;
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(data, error);
+  if (error) throw BadInput(headerPath, "data file '" + dataFile + "' unreadable (" + error.message() + ")");
+  return size;
+}
+
+std::optional<StoredData> nrrdStoredData(const std::string& path) {
+  std::uint64_t headerBytes = 0;
+  std::map<std::string, std::string> fields = nrrdFields(path, headerBytes);
+  static const std::map<std::string, double> kExpansion = {
+      {"raw", 1}, {"hex", 1}, {"txt", 8}, {"text", 8}, {"ascii", 8}, {"gz", 1032}, {"gzip", 1032},
+      {"bz2", 1.2e6}, {"bzip2", 1.2e6}};
+  const auto expansion = kExpansion.find(fields["encoding"]);
+  if (expansion == kExpansion.end()) return std::nullopt;
+  StoredData stored;
+  stored.expansion = expansion->second;
+  std::string dataFile = fields.count("data file") ? fields["data file"] : fields["datafile"];
+  if (dataFile.empty()) {
+    const std::uint64_t size = std::filesystem::file_size(path);
+    stored.bytes = size > headerBytes ? size - headerBytes : 0;
+  } else {
+    // "LIST" or a "%d" pattern with its numbers: one file per slice, not counted here.
+    if (dataFile.rfind("LIST", 0) == 0 || dataFile.find(' ') != std::string::npos) return std::nullopt;
+    stored.bytes = sizeOfDataFile(path, dataFile);
+  }
+  return stored;
+}
+
+std::optional<StoredData> metaImageStoredData(const std::string& path) {
+  std::uint64_t headerBytes = 0;
+  std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
+  const std::string& dataFile = fields["ElementDataFile"];
+  if (dataFile.empty() || dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos)
+    return std::nullopt;
+  StoredData stored;
+  stored.expansion = fields["CompressedData"] == "True" ? 1032 : 1;
+  if (dataFile != "LOCAL") {
+    stored.bytes = sizeOfDataFile(path, dataFile);
+  } else {
+    const std::uint64_t size = std::filesystem::file_size(path);
+    stored.bytes = size > headerBytes ? size - headerBytes : 0;
+  }
+  return stored;
+}
+
+// ITK allocates the voxels a NRRD or MetaImage header declares before it reads them, so a few hundred
+// bytes declaring 10^9 voxels exhaust the memory (or overflow the count). Refused here when the data
+// stored cannot hold them.
+void checkDeclaredVoxelBytes(const itk::ImageIOBase& io, const std::string& path) {
+  std::uint64_t declared = 0;
+  try {
+    declared = std::uint64_t(io.GetComponentSize()) * io.GetNumberOfComponents();
+  } catch (const itk::ExceptionObject& error) {  // a component type ITK has no size for
+    throw BadInput(path, itkErrorReason(error));
+  }
+  bool overflow = false;
+  for (unsigned axis = 0; axis < io.GetNumberOfDimensions(); ++axis)
+    overflow |= __builtin_mul_overflow(declared, std::uint64_t(io.GetDimensions(axis)), &declared);
+  if (overflow) throw BadInput(path, "header declares more voxels than 64 bits can count");
+  const std::optional<StoredData> stored = isNrrd(path) ? nrrdStoredData(path) : metaImageStoredData(path);
+  if (stored && double(declared) > stored->expansion * double(stored->bytes))
+    throw BadInput(path, "header declares " + std::to_string(declared) + " bytes of voxels, more than the " +
+                             std::to_string(stored->bytes) + " bytes of data stored can hold");
+}
 
 // An ImageIO that has read the header of `path`; throws BadInput if no ITK reader accepts the file or our
 // own NIfTI checks fail (`wholeFile`: also check that all voxel bytes are there).
@@ -406,6 +516,7 @@ itk::ImageIOBase::Pointer openImageIO(const std::string& path, bool wholeFile) {
   } catch (const itk::ExceptionObject& error) {
     throw BadInput(path, itkErrorReason(error));
   }
+  if (wholeFile && (isNrrd(path) || isMetaImage(path))) checkDeclaredVoxelBytes(*io, path);
   return io;
 }
 

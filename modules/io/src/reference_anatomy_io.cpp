@@ -10,6 +10,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <type_traits>
 
 namespace vesalius::io {
 
@@ -43,6 +45,27 @@ std::string text(const Json& object, const char* key, const std::string& source,
   return value.get<std::string>();
 }
 
+// An optional member of the type asked for, or `fallback` when it is absent; a member of another type is
+// BadInput (nlohmann's value() would throw its own type_error, which names no file).
+template <class T>
+T optionalMember(const Json& object, const char* key, T fallback, const std::string& source, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!it->is_boolean()) throw BadInput(source, where + ": \"" + key + "\" must be true or false");
+  } else {
+    if (!it->is_string()) throw BadInput(source, where + ": \"" + key + "\" must be a string");
+  }
+  return it->template get<T>();
+}
+
+// An array member; BadInput for anything else (nlohmann iterates a number or string as one element).
+const Json& arrayMember(const Json& object, const char* key, const std::string& source, const std::string& where) {
+  const Json& value = member(object, key, source, where);
+  if (!value.is_array()) throw BadInput(source, where + ": \"" + key + "\" must be an array");
+  return value;
+}
+
 // A mesh named in reference.json (`source`): a path relative to the folder that stays inside it, so that a
 // file handed to us never makes us read elsewhere.
 TriMesh readMesh(const fs::path& folder, const std::string& file, const std::string& source) {
@@ -67,24 +90,25 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
   } catch (const Json::exception& e) {
     throw BadInput(source, std::string("invalid JSON: ") + e.what());
   }
-  if (!doc.is_object() || doc.value("format", "") != kFormat)
+  if (!doc.is_object() || !doc.contains("format") || doc["format"] != kFormat)
     throw BadInput(source, std::string("not a reference anatomy (\"format\" is not \"") + kFormat + "\")");
   if (!doc.contains("version") || !doc["version"].is_number_integer() || doc["version"].get<long long>() != 1)
     throw BadInput(source, "unsupported reference anatomy version (\"version\" must be the number 1)");
   ReferenceAnatomy anatomy;
-  anatomy.name = doc.value("name", folder);
+  anatomy.name = optionalMember<std::string>(doc, "name", folder, source, "the document");
   anatomy.skin = readMesh(root, text(doc, "skin", source, "the document"), source);
   if (doc.contains("skin_cut_vertices")) {
     if (!doc["skin_cut_vertices"].is_array()) throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
     for (const Json& v : doc["skin_cut_vertices"]) {
-      if (!v.is_number_integer()) throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
+      if (!v.is_number_integer() || v < 0 || v > std::numeric_limits<int>::max())
+        throw BadInput(source, "\"skin_cut_vertices\" must be an array of vertex indices");
       anatomy.skinCutVertices.push_back(v.get<int>());
     }
   }
   const Json& plane = member(doc, "sagittal_plane", source, "the document");
   anatomy.sagittal.point = vector3(member(plane, "point", source, "sagittal_plane"), "sagittal_plane.point", source);
   anatomy.sagittal.normal = vector3(member(plane, "normal", source, "sagittal_plane"), "sagittal_plane.normal", source);
-  for (const Json& t : member(doc, "tissues", source, "the document")) {
+  for (const Json& t : arrayMember(doc, "tissues", source, "the document")) {
     ReferenceTissue tissue;
     tissue.name = text(t, "name", source, "a tissue");
     const std::string where = "tissue '" + tissue.name + "'";
@@ -93,16 +117,16 @@ ReferenceAnatomy readReferenceAnatomy(const std::string& folder) {
     } catch (const UsageError& e) {
       throw BadInput(source, where + ": " + e.what());
     }
-    tissue.group = t.value("group", "");
-    tissue.symmetric = t.value("symmetric", false);
+    tissue.group = optionalMember<std::string>(t, "group", "", source, where);
+    tissue.symmetric = optionalMember<bool>(t, "symmetric", false, source, where);
     tissue.mesh = readMesh(root, text(t, "file", source, where), source);
     anatomy.tissues.push_back(std::move(tissue));
   }
   if (doc.contains("points"))
-    for (const Json& p : doc["points"]) {
+    for (const Json& p : arrayMember(doc, "points", source, "the document")) {
       ReferencePoint point;
       point.name = text(p, "name", source, "a point");
-      point.tissue = p.value("tissue", "");
+      point.tissue = optionalMember<std::string>(p, "tissue", "", source, "point '" + point.name + "'");
       point.position = vector3(member(p, "position", source, "point '" + point.name + "'"), "point '" + point.name + "'", source);
       anatomy.points.push_back(std::move(point));
     }

@@ -89,7 +89,10 @@ SlicerSegmentation readSlicerSegmentation(const std::string& path) {
   for (const auto& [index, fields] : bySegment) anyLayerField |= fields.count("Layer") > 0;
 
   SlicerSegmentation segmentation;
-  for (const auto& [index, fields] : bySegment) {
+  for (const auto& entry : bySegment) {
+    // Not a structured binding: C++17 lambdas cannot capture those (clang refuses; the fuzz build uses it).
+    const int index = entry.first;
+    const std::map<std::string, std::string>& fields = entry.second;
     const std::string prefix = "Segment" + std::to_string(index) + "_";
     auto field = [&](const char* name) -> const std::string* {
       const auto found = fields.find(name);

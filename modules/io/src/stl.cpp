@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -200,7 +201,13 @@ TriMesh parseStl(std::string_view bytes, const std::string& source) {
   return mesh;
 }
 
-std::string formatStlBinary(const TriMesh& mesh) {
+std::string formatStlBinary(const TriMesh& mesh, const std::string& destination) {
+  // float32 holds magnitudes up to about 3.4e38; a cast beyond it gives infinity, which no reader takes.
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(mesh.V(v, k)) <= double(std::numeric_limits<float>::max())))
+        throw BadInput(destination, "vertex " + std::to_string(v) + " has a coordinate beyond the float32 range "
+                                    "of binary STL; write ASCII STL");
   std::string out = "SPACE=LPS binary STL written by Vesalius";
   out.resize(kHeaderBytes, ' ');
   out.reserve(kPreambleBytes + kRecordBytes * mesh.F.rows());

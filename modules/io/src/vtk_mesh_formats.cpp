@@ -248,25 +248,38 @@ int plyTypeBytes(const std::string& type) {
 // receives the offset of the data.
 std::string parsePlyHeader(const std::string& bytes, const std::string& path, std::vector<PlyElement>& elements,
                            std::size_t& bodyStart) {
-  const std::size_t end = bytes.find("end_header");
-  const std::size_t newline = bytes.find('\n', end);
+  // The line whose first word is end_header, as vtkPLYReader looks for it ("end_headerX" is not it).
+  std::size_t end = std::string::npos;
+  for (std::size_t line = 0; line < bytes.size() && end == std::string::npos;) {
+    const std::size_t next = std::min(bytes.find('\n', line), bytes.size());
+    const std::vector<std::string_view> words = splitWhitespace(std::string_view(bytes).substr(line, next - line));
+    if (!words.empty() && words[0] == "end_header") end = line;
+    line = next + 1;
+  }
+  const std::size_t newline = end == std::string::npos ? end : bytes.find('\n', end);
   if (bytes.rfind("ply", 0) != 0 || end == std::string::npos || newline == std::string::npos)
     throw BadInput(path, "not a PLY file (expected 'ply' ... 'end_header')");
   bodyStart = newline + 1;
   std::istringstream header(bytes.substr(0, end));
   std::string line, format;
+  std::vector<std::string> vertexProperties;
   while (std::getline(header, line)) {
     std::istringstream words(line);
     std::string keyword, a, b, c;
     words >> keyword >> a >> b >> c;
     if (keyword == "format") format = a;
-    if (keyword == "element") elements.push_back({a, std::strtoll(b.c_str(), nullptr, 10), {}});
+    if (keyword == "element") {
+      for (const PlyElement& e : elements)
+        if (e.name == a) throw BadInput(path, "PLY element '" + a + "' is declared twice");
+      elements.push_back({a, std::strtoll(b.c_str(), nullptr, 10), {}});
+    }
     if (keyword != "property") continue;
     if (elements.empty()) throw BadInput(path, "PLY property before any element");
     const bool list = a == "list";
     const std::string& valueType = list ? c : a;
     std::string propertyName;
     words >> propertyName;
+    if (elements.back().name == "vertex") vertexProperties.push_back(list ? propertyName : b);
     PlyProperty property{plyTypeBytes(valueType), list ? plyTypeBytes(b) : 0, plyTypeIsFloat(valueType),
                          plyTypeIsSigned(valueType),
                          list && elements.back().name == "face" &&
@@ -277,6 +290,15 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
   }
   for (const PlyElement& e : elements)
     if (e.count < 0) throw BadInput(path, "PLY element '" + e.name + "' has a negative count");
+  // vtkPLYReader segfaults on a file whose vertices lack x, y or z (in its error path), and frees memory it
+  // never allocated for a file without faces or whose faces have no vertex list.
+  for (const char* axis : {"x", "y", "z"})
+    if (std::find(vertexProperties.begin(), vertexProperties.end(), axis) == vertexProperties.end())
+      throw BadInput(path, std::string("PLY vertices have no '") + axis + "' property");
+  const auto face = std::find_if(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "face"; });
+  if (face == elements.end() ||
+      std::none_of(face->properties.begin(), face->properties.end(), [](const PlyProperty& p) { return p.vertexIndices; }))
+    throw BadInput(path, "PLY file has no faces with a 'vertex_indices' list");
   return format;
 }
 
@@ -348,23 +370,38 @@ void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
       }
 }
 
+// vtkPLYReader reads ASCII data a line per element, as a C string of at most 4095 bytes, and takes a missing
+// word as a null pointer (a segfault in strtod), so each element must be on a line of its own holding all
+// its values before any NUL byte.
 void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vector<PlyElement>& elements,
                   const std::string& path) {
-  const std::vector<std::string_view> tokens = splitWhitespace(std::string_view(bytes).substr(offset));
+  const std::string_view body = std::string_view(bytes).substr(offset);
   const long long vertices = plyVertexCount(elements);
-  std::size_t next = 0;
+  std::size_t lineStart = 0;
   for (const PlyElement& e : elements)
-    for (long long i = 0; i < e.count; ++i)
+    for (long long i = 0; i < e.count; ++i) {
+      if (lineStart >= body.size()) plyEndsEarly(path, e, i);
+      const std::size_t lineEnd = std::min(body.find('\n', lineStart), body.size());
+      if (lineEnd - lineStart >= 4095)
+        throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " is on a line of 4095 bytes or more");
+      std::string_view line = body.substr(lineStart, lineEnd - lineStart);
+      line = line.substr(0, line.find('\0'));
+      const std::vector<std::string_view> tokens = splitWhitespace(line);
+      lineStart = lineEnd + 1;
+      std::size_t next = 0;
       for (const PlyProperty& p : e.properties) {
-        if (next >= tokens.size()) plyEndsEarly(path, e, i);
+        if (next >= tokens.size())
+          throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " has too few values on its line");
         const long long values = p.countBytes ? std::strtoll(std::string(tokens[next++]).c_str(), nullptr, 10) : 1;
-        if (values < 0 || static_cast<std::size_t>(values) > tokens.size() - next) plyEndsEarly(path, e, i);
+        if (values < 0 || static_cast<std::size_t>(values) > tokens.size() - next)
+          throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " has too few values on its line");
         if (p.vertexIndices)
           for (long long v = 0; v < values; ++v)
             checkPlyVertexIndex(std::strtod(std::string(tokens[next + std::size_t(v)]).c_str(), nullptr), vertices,
                                 path, i);
         next += static_cast<std::size_t>(values);
       }
+    }
 }
 
 void checkPlyStructure(const std::string& path) {

@@ -12,7 +12,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <numeric>
 
 namespace vesalius::io {
@@ -289,6 +293,103 @@ TEST(ImageIo, BrokenInputsAreOneLineBadInput) {
   expectOneLineBadInput(kBad + "/dicom_two_series", "2 DICOM series");
   expectOneLineBadInput(kBad + "/scan_missing.nii.gz", "no such file");
   expectOneLineBadInput(kBad + "/scan_unknown_extension.xyz", "unknown scan format '.xyz'");
+}
+
+void writeBytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// A NRRD or MetaImage header declaring 2000 x 2000 x 1000 shorts (8 GB) over a few hundred bytes: ITK would
+// allocate them all before reading; refused first, for every encoding and for attached and detached data
+// (fuzz_nrrd and fuzz_mha found these). The same volume really stored is read.
+TEST(ImageIo, HeadersDeclaringMoreVoxelsThanTheirDataHoldsAreRefused) {
+  const fs::path folder = freshOutputFolder("memory_bombs");
+  const std::string nrrd = "NRRD0004\ntype: short\ndimension: 3\nspace: left-posterior-superior\n"
+                           "sizes: 2000 2000 1000\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nendian: little\n";
+  const std::string mha = "ObjectType = Image\nNDims = 3\nBinaryData = True\nElementSpacing = 1 1 1\n"
+                          "DimSize = 2000 2000 1000\nElementType = MET_SHORT\n";
+  const std::string data(600, '\0');
+  const std::pair<std::string, std::string> files[] = {
+      {"raw.nrrd", nrrd + "encoding: raw\n\n" + data},
+      {"gzip.nrrd", nrrd + "encoding: gzip\n\n" + data},
+      {"ascii.nrrd", nrrd + "encoding: ascii\n\n1 2 3 4\n"},
+      {"detached.nhdr", nrrd + "encoding: gzip\ndata file: detached.raw.gz\n\n"},
+      {"compressed.mha", mha + "CompressedData = True\nElementDataFile = LOCAL\n" + data},
+      {"compressed_sized.mha", mha + "CompressedData = True\nCompressedDataSize = 600\nElementDataFile = LOCAL\n" + data},
+      {"detached.mhd", mha + "CompressedData = True\nElementDataFile = detached.zraw\n"},
+      {"overflow.mha", "ObjectType = Image\nNDims = 3\nBinaryData = True\nCompressedData = True\n"
+                       "DimSize = 2147483647 2147483647 2147483647\nElementType = MET_DOUBLE\nElementDataFile = LOCAL\n" + data},
+  };
+  writeBytes(folder / "detached.raw.gz", data);
+  writeBytes(folder / "detached.zraw", data);
+  for (const auto& [name, bytes] : files) {
+    writeBytes(folder / name, bytes);
+    const std::string path = (folder / name).string();
+    std::string message;
+    try {
+      readScan(path);
+    } catch (const BadInput& e) {
+      message = e.what();
+    }
+    std::cout << name << ": " << message << "\n";
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+    EXPECT_TRUE(message.find("bytes of data stored can hold") != std::string::npos ||
+                message.find("more voxels than 64 bits can count") != std::string::npos)
+        << message;
+  }
+  // What the check lets through: the volume written by us (gzip-compressed, ratio far below 1032).
+  Image image;
+  image.geometry.size = {64, 64, 32};
+  image.values.assign(std::size_t(image.geometry.voxelCount()), 0.0f);
+  image.fileType = PixelType::Int16;
+  for (const std::string extension : {".nrrd", ".mha", ".nhdr", ".mhd"}) {
+    const std::string path = (folder / ("zeros" + extension)).string();
+    writeScan(path, image);
+    EXPECT_EQ(readScan(path).values.size(), image.values.size()) << path;
+  }
+}
+
+// MetaImage dimensions that disagree: MetaIO reads as many voxels as DimSize says into the image ITK made
+// from NDims (NDims = 0 over DimSize = 4 3 2, found by fuzz_mha, overflows its buffer).
+TEST(ImageIo, MetaImageDimSizeMustHoldNDimsPositiveWholeNumbers) {
+  const fs::path folder = freshOutputFolder("metaimage_dimensions");
+  const std::pair<std::string, std::string> cases[] = {
+      {"NDims = 0\nDimSize = 4 3 2\n", "NDims is '0'"},
+      {"NDims = 3\nDimSize = 4 3\n", "DimSize holds 2 numbers but NDims is 3"},
+      {"NDims = 3\nDimSize = 4 0 2\n", "DimSize holds 0"},
+      {"NDims = 3\nDimSize = 4 3 2.5\n", "DimSize holds 2.5"},
+      {"NDims = 2.5\nDimSize = 4 3 2\n", "NDims is '2.5'"},
+      {"DimSize = 4 3 2\n", "without NDims or DimSize"},
+  };
+  int n = 0;
+  for (const auto& [dimensions, fragment] : cases) {
+    const fs::path path = folder / ("case" + std::to_string(n++) + ".mha");
+    writeBytes(path, "ObjectType = Image\n" + dimensions +
+                         "BinaryData = True\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n" + std::string(24, '\1'));
+    test::expectOneLineBadInput(path.string(), fragment, [&] { readScan(path.string()); });
+  }
+}
+
+// A NIfTI header whose vox_offset and sizes make a byte count beyond 64 bits (fuzz_nifti): refused as
+// truncated, not converted with undefined behaviour.
+TEST(ImageIo, NiftiByteCountsBeyond64BitsAreTruncatedFiles) {
+  const fs::path folder = freshOutputFolder("nifti_byte_counts");
+  for (const float offset : {352.0f, 1e30f, 3e38f}) {
+    std::string header(352, '\0');
+    const auto put = [&](std::size_t at, auto value) { std::memcpy(&header[at], &value, sizeof value); };
+    put(0, std::int32_t(348));
+    const std::int16_t dim[8] = {3, 32767, 32767, 32767, 1, 1, 1, 1};
+    std::memcpy(&header[40], dim, sizeof dim);
+    put(70, std::int16_t(64));  // float64
+    put(72, std::int16_t(64));
+    const float pixdim[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    std::memcpy(&header[76], pixdim, sizeof pixdim);
+    put(108, offset);
+    std::memcpy(&header[344], "n+1", 4);
+    const fs::path path = folder / ("offset_" + std::to_string(int(std::log10(offset))) + ".nii");
+    writeBytes(path, header + std::string(64, '\0'));
+    test::expectOneLineBadInput(path.string(), "truncated", [&] { readScan(path.string()); });
+  }
 }
 
 }  // namespace

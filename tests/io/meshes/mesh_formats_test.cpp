@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -91,6 +92,33 @@ TEST(StlFormat, AsciiRoundTripIsExact) {
   const std::string text = formatStlAscii(surface);
   EXPECT_EQ(text.rfind("solid SPACE=LPS", 0), 0u);
   expectSameCorners(surface, parseStl(text, "tet.stl"));
+}
+
+// Binary STL stores float32: a coordinate beyond its range (fuzz_stl read 2e113 from an ASCII file) is
+// refused naming the destination rather than written as infinity, on every axis and sign; the largest
+// float32 magnitudes are written and read back.
+TEST(StlFormat, BinaryRefusesCoordinatesBeyondFloat32) {
+  const double largest = double(std::numeric_limits<float>::max());
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double sign : {1.0, -1.0}) {
+      TriMesh surface = tetSurface();
+      surface.V(3, axis) = sign * 2e113;
+      try {
+        formatStlBinary(surface, "out.stl");
+        ADD_FAILURE() << "axis " << axis << " sign " << sign << " was written";
+      } catch (const BadInput& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("out.stl: vertex 3 has a coordinate beyond the float32 range", 0), 0u)
+            << e.what();
+      }
+      surface.V(3, axis) = sign * largest;
+      const TriMesh back = parseStl(formatStlBinary(surface, "out.stl"), "out.stl");
+      std::cout << "axis " << axis << ": " << sign * largest << " mm reads back as " << back.V.cwiseAbs().maxCoeff()
+                << "\n";
+      expectSameCorners(surface, back);
+    }
+  TriMesh surface = tetSurface();
+  surface.V(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(formatStlBinary(surface, "out.stl"), BadInput);
 }
 
 TEST(ObjFormat, CornerFormsNegativeIndicesAndPolygons) {

@@ -1,5 +1,5 @@
 // Reference folders (io/reference_anatomy_io.h): a round trip, and reference.json files that name meshes
-// outside their folder or carry a version of the wrong type, refused in one line naming reference.json.
+// outside their folder or carry a member of the wrong type, refused in one line naming reference.json.
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 
@@ -70,6 +70,32 @@ TEST(ReferenceAnatomyIo, MeshesOutsideTheFolderAndBadVersionsAreRefused) {
   edit(version, "\"version\": 1", "\"version\": \"1\"");
   test::expectOneLineBadInput(version + "/reference.json", "unsupported reference anatomy version",
                               [&] { readReferenceAnatomy(version); });
+}
+
+// Members of the wrong type (the fuzz_reference_json harness found the first one), each refused in one
+// line naming reference.json and the member, not with a JSON library exception.
+TEST(ReferenceAnatomyIo, MembersOfTheWrongTypeAreRefused) {
+  const struct {
+    const char *from, *to, *fragment;
+  } cases[] = {
+      {"\"kind\": \"bone\"", "\"kind\": \"bone\", \"group\": [0.0, -60.0, 0.0]", "\"group\" must be a string"},
+      {"\"kind\": \"bone\"", "\"kind\": \"bone\", \"symmetric\": 1", "\"symmetric\" must be true or false"},
+      {"\"name\": \"spheres\"", "\"name\": 7", "\"name\" must be a string"},
+      {"\"format\": \"vesalius-reference-anatomy\"", "\"format\": 3", "not a reference anatomy"},
+      {"\"tissues\": [", "\"tissues\": 5, \"unused\": [", "\"tissues\" must be an array"},
+      {"\"points\": []", "\"points\": \"p\"", "\"points\" must be an array"},
+      {"\"points\": []", "\"points\": [{\"name\": \"p\", \"tissue\": 5, \"position\": [0, 0, 0]}]",
+       "\"tissue\" must be a string"},
+      {"\"skin_cut_vertices\": []", "\"skin_cut_vertices\": [4294967296]", "must be an array of vertex indices"},
+      {"\"skin_cut_vertices\": []", "\"skin_cut_vertices\": [-1]", "must be an array of vertex indices"},
+  };
+  int n = 0;
+  for (const auto& c : cases) {
+    const std::string dir = folder("wrong_type_" + std::to_string(n++));
+    writeReferenceAnatomy(dir, twoSpheres(), {});
+    edit(dir, c.from, c.to);
+    test::expectOneLineBadInput(dir + "/reference.json", c.fragment, [&] { readReferenceAnatomy(dir); });
+  }
 }
 
 }  // namespace
