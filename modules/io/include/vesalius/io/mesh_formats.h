@@ -80,8 +80,9 @@ TriMesh mergeCoincidentVertices(const TriMesh& mesh);
 // STL, ASCII or binary. Binary is recognised by its size (84 + 50 n bytes for n triangles in the
 // header), even when it begins with "solid"; anything else starting with "solid" is ASCII.
 TriMesh parseStl(std::string_view bytes, const std::string& source);
-// Binary STL (80-byte header with "SPACE=LPS", float32 coordinates, facet normals computed).
-std::string formatStlBinary(const TriMesh& mesh);
+// Binary STL (80-byte header with "SPACE=LPS", float32 coordinates, facet normals computed). Throws
+// BadInput naming `destination` for a coordinate beyond float32's range (ASCII STL keeps doubles).
+std::string formatStlBinary(const TriMesh& mesh, const std::string& destination = "");
 // ASCII STL, "solid SPACE=LPS", coordinates with full double precision.
 std::string formatStlAscii(const TriMesh& mesh);
 
