@@ -183,6 +183,16 @@ std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int len
     swapped = true;
     size = headerField<std::int32_t>(header, 0, true);
   }
+  // nifticlib takes the byte order from dim[0] (1 to 7 one way or the other) before sizeof_hdr, so a file
+  // can say one order in sizeof_hdr and be read in the other; the checks must read it as nifticlib does.
+  const auto orderOfDim0 = [&](std::size_t at, auto type) {
+    using Dim = decltype(type);
+    const auto plain = headerField<Dim>(header, at, false), reversed = headerField<Dim>(header, at, true);
+    if (plain >= 1 && plain <= 7) swapped = false;
+    else if (reversed >= 1 && reversed <= 7) swapped = true;
+  };
+  if (size == 348) orderOfDim0(40, std::int16_t{});
+  if (size == 540) orderOfDim0(16, std::int64_t{});
   if (size == 348) {
     NiftiLayout layout = niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108,
                                                                  std::memcmp(header + 344, "n+1", 4) == 0);

@@ -370,6 +370,32 @@ TEST(ImageIo, MetaImageDimSizeMustHoldNDimsPositiveWholeNumbers) {
   }
 }
 
+// nifticlib takes a NIfTI-1 file's byte order from dim[0], not sizeof_hdr: a header with sizeof_hdr in
+// little-endian order and everything else big-endian declares 2000 x 2000 x 1000 shorts to nifticlib, and
+// must be refused as truncated before ITK allocates them (fuzz_nifti ran out of memory on one).
+TEST(ImageIo, NiftiByteOrderIsTakenFromDim0AsNifticlibDoes) {
+  const fs::path folder = freshOutputFolder("nifti_byte_order");
+  std::string header(352, '\0');
+  const auto putBig = [&](std::size_t at, auto value) {
+    char bytes[sizeof value];
+    std::memcpy(bytes, &value, sizeof value);
+    std::reverse(bytes, bytes + sizeof value);
+    std::memcpy(&header[at], bytes, sizeof value);
+  };
+  const std::int32_t size = 348;
+  std::memcpy(&header[0], &size, sizeof size);  // little-endian
+  const std::int16_t dim[8] = {3, 2000, 2000, 1000, 1, 1, 1, 1};
+  for (int n = 0; n < 8; ++n) putBig(40 + 2 * std::size_t(n), dim[n]);
+  putBig(70, std::int16_t(4));  // int16
+  putBig(72, std::int16_t(16));
+  for (int n = 0; n < 8; ++n) putBig(76 + 4 * std::size_t(n), 1.0f);
+  putBig(108, 352.0f);
+  std::memcpy(&header[344], "n+1", 4);
+  const fs::path path = folder / "mixed_order.nii";
+  writeBytes(path, header + std::string(600, '\0'));
+  test::expectOneLineBadInput(path.string(), "file is truncated: 952 of 8000000352 bytes", [&] { readScan(path.string()); });
+}
+
 // A NIfTI header whose vox_offset and sizes make a byte count beyond 64 bits (fuzz_nifti): refused as
 // truncated, not converted with undefined behaviour.
 TEST(ImageIo, NiftiByteCountsBeyond64BitsAreTruncatedFiles) {
