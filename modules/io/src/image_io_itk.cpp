@@ -269,7 +269,12 @@ void checkNiftiFile(const std::string& path, bool wholeFile) {
   unsigned char header[540];
   const int length = gzread(file.get(), header, sizeof header);
   const std::optional<NiftiLayout> layout = parseNiftiHeader(header, length);
-  if (!layout) return;
+  // ITK takes a file as NIfTI by a magic string alone, so a wrong sizeof_hdr must not let it past the
+  // checks: a .nii file is NIfTI-1 (348) or NIfTI-2 (540).
+  if (!layout) {
+    if (length < 348) return;  // ITK reports files too short for a header
+    throw BadInput(path, "NIfTI header size (sizeof_hdr) is neither 348 nor 540 in either byte order");
+  }
   // nifticlib reads a zero or negative size as 1 without a word.
   if (layout->badDim > 0)
     throw BadInput(path, "dim[" + std::to_string(layout->badDim) + "] is not a positive size");

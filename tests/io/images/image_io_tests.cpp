@@ -394,6 +394,11 @@ TEST(ImageIo, NiftiByteOrderIsTakenFromDim0AsNifticlibDoes) {
   const fs::path path = folder / "mixed_order.nii";
   writeBytes(path, header + std::string(600, '\0'));
   test::expectOneLineBadInput(path.string(), "file is truncated: 952 of 8000000352 bytes", [&] { readScan(path.string()); });
+  // ITK takes a file with the magic "n+1" as NIfTI whatever its sizeof_hdr says (fuzz_nifti: "DI\0\0").
+  header.replace(0, 4, std::string("DI\0\0", 4));
+  const fs::path wrongSize = folder / "wrong_sizeof_hdr.nii";
+  writeBytes(wrongSize, header + std::string(600, '\0'));
+  test::expectOneLineBadInput(wrongSize.string(), "sizeof_hdr", [&] { readScan(wrongSize.string()); });
 }
 
 // A NIfTI header whose vox_offset and sizes make a byte count beyond 64 bits (fuzz_nifti): refused as
