@@ -1,24 +1,22 @@
 // vesalius labels: edits of a label map (extract, merge, relabel, connected components, hole filling,
 // morphology in mm, cropping), each written as a new map with its label table beside it.
 //
-// The operations are the library's (segmentation/label_edit.h, label_ops.h). What the command adds is
-// how a per-label mask edit goes back into the map: voxels a label loses become background, voxels it
-// gains are taken from the background only, unless --overwrite lets it take them from other labels too.
-// Keeping N > 1 largest components is not offered: label_ops.h gives the largest one, or all components
-// above a size.
+// The operations are the library's (segmentation/label_edit.h, label_mask_edit.h: a per-label mask edit
+// goes back into the map taking voxels from the background only, unless --overwrite); the command
+// resolves the labels the user names and sums up what changed (labels_outputs.h). Keeping N > 1 largest
+// components is not offered: label_ops.h gives the largest one, or all components above a size.
 #include "common.h"
+#include "labels_outputs.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/label_edit.h"
+#include "vesalius/segmentation/label_mask_edit.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <functional>
-#include <iostream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -28,6 +26,7 @@ namespace vesalius::cli {
 namespace {
 
 namespace seg = segmentation;
+using E = seg::MaskEdit;
 
 struct LabelsOptions {
   std::string labels, table, out;
@@ -44,54 +43,11 @@ struct LabelsOptions {
   CommonOptions common;
 };
 
-std::vector<std::int64_t> voxelsPerId(const Grid<Label>& labels) {
-  std::vector<std::int64_t> voxels(65536, 0);
-  for (Label v : labels.values) ++voxels[v];
-  return voxels;
-}
-
-// The map being edited, its voxel count per id, and the labels the user named.
-struct Input {
+// The map being edited with the action's options.
+struct Input : LabelsInput {
   const LabelsOptions& o;
-  LabelMap map;
-  std::vector<std::int64_t> voxels;  // by id
-
-  Input(const LabelsOptions& options, LabelMap labelMap)
-      : o(options), map(std::move(labelMap)), voxels(voxelsPerId(map.labels)) {}
-
-  // "liver (5)", or "5" for an id without a table entry.
-  std::string name(Label id) const {
-    const LabelEntry* e = map.table.find(id);
-    return e ? e->name + " (" + std::to_string(id) + ")" : std::to_string(id);
-  }
-  // An id or name that must have voxels: editing a label the map does not hold is a mistake.
-  Label label(const std::string& idOrName) const {
-    const Label id = resolveLabel(map, idOrName, o.labels);
-    if (voxels[id] == 0) throw BadInput(o.labels, "no voxel has label " + name(id));
-    return id;
-  }
-  std::vector<Label> labels(const std::vector<std::string>& idsOrNames) const {
-    std::vector<Label> ids;
-    for (const std::string& s : idsOrNames) {
-      const Label id = label(s);
-      if (std::find(ids.begin(), ids.end(), id) != ids.end()) throw UsageError("label " + name(id) + " is given twice");
-      ids.push_back(id);
-    }
-    return ids;
-  }
-  // The ids with voxels, but not those of `ids`.
-  std::vector<Label> presentExcept(const std::vector<Label>& ids) const {
-    std::vector<Label> out;
-    for (std::size_t id = 1; id < voxels.size(); ++id)
-      if (voxels[id] > 0 && std::find(ids.begin(), ids.end(), Label(id)) == ids.end()) out.push_back(Label(id));
-    return out;
-  }
-};
-
-// A summary line: the voxels of ids `before` in the input against those of ids `after` in the output.
-struct SummaryRow {
-  std::string name;
-  std::vector<Label> before, after;
+  explicit Input(const LabelsOptions& options)
+      : LabelsInput(options.labels, io::readLabelMap(options.labels, options.table)), o(options) {}
 };
 
 struct Edit {
@@ -177,19 +133,12 @@ Edit relabelIds(const Input& in, io::Report& report) {
   return e;
 }
 
-// Replaces each selected label, in the order given, by `edit` of its mask (see the header comment).
-Edit editMasks(const Input& in, const std::function<seg::Mask(const seg::Mask&)>& edit) {
-  Edit e{in.map, {}};
+// Each selected label, in the order given, replaced by the edit of its mask (label_mask_edit.h).
+Edit editMasks(const Input& in, seg::LabelMaskEditOptions options) {
   const std::vector<Label> ids = in.labels(in.o.selected);
-  for (Label id : ids) {
-    const seg::Mask before = seg::maskOf(e.map.labels, id);
-    const seg::Mask after = edit(before);
-    seg::Mask gained = seg::maskAndNot(after, before);
-    if (!in.o.overwrite) gained = seg::maskAnd(gained, seg::maskOf(e.map.labels, 0));
-    seg::paintMask(e.map.labels, seg::maskAndNot(before, after), 0);
-    seg::paintMask(e.map.labels, gained, id);
-    e.rows.push_back({in.name(id), {id}, {id}});
-  }
+  options.overwrite = in.o.overwrite;
+  Edit e{seg::editLabelMasks(in.map, ids, options), {}};
+  for (Label id : ids) e.rows.push_back({in.name(id), {id}, {id}});
   if (in.o.overwrite) e.rows.push_back(othersRow(in, ids));
   return e;
 }
@@ -200,21 +149,14 @@ Edit components(const Input& in, io::Report& report) {
   report.parameter("min_ml", in.o.minMl);
   if (!(in.o.minMl >= 0) || !std::isfinite(in.o.minMl)) throw UsageError("--min-ml must be a volume in mL >= 0");
   if (in.o.largest == (in.o.minMl > 0)) throw UsageError("labels components: give one of --largest and --min-ml");
-  const double voxelMl = in.map.labels.geometry.spacing.prod() / 1000.0;
-  const auto minVoxels = std::int64_t(std::ceil(in.o.minMl / voxelMl - 1e-9));
-  return editMasks(in, [&](const seg::Mask& mask) {
-    return in.o.largest ? seg::largestComponent(mask) : seg::removeSmallComponents(mask, minVoxels);
-  });
+  return editMasks(in, {in.o.largest ? E::LargestComponent : E::DropSmallComponents, in.o.minMl});
 }
 
 Edit fill(const Input& in, io::Report& report) {
   report.parameter("label", in.o.selected);
   report.parameter("axial", in.o.axial);
   report.parameter("overwrite", in.o.overwrite);
-  const int axis = seg::axialAxis(in.map.labels.geometry);
-  return editMasks(in, [&](const seg::Mask& mask) {
-    return in.o.axial ? seg::fillHolesSliceWise(mask, axis) : seg::fillHoles3d(mask);
-  });
+  return editMasks(in, {in.o.axial ? E::FillHolesAxial : E::FillHoles});
 }
 
 Edit morph(const Input& in, io::Report& report) {
@@ -224,10 +166,9 @@ Edit morph(const Input& in, io::Report& report) {
   report.parameter("overwrite", in.o.overwrite);
   const double r = in.o.radiusMm;
   if (!(r > 0) || !std::isfinite(r)) throw UsageError("--radius-mm must be a number of mm > 0");
-  const std::map<std::string, seg::Mask (*)(const seg::Mask&, double)> ops{
-      {"dilate", seg::dilateMm}, {"erode", seg::erodeMm}, {"open", seg::openMm}, {"close", seg::closeMm}};
-  const auto op = ops.at(in.o.op);
-  return editMasks(in, [&](const seg::Mask& mask) { return op(mask, r); });
+  const std::map<std::string, E> ops{
+      {"dilate", E::Dilate}, {"erode", E::Erode}, {"open", E::Open}, {"close", E::Close}};
+  return editMasks(in, {ops.at(in.o.op), 0, r});
 }
 
 Edit crop(const Input& in, io::Report& report) {
@@ -255,63 +196,18 @@ Edit crop(const Input& in, io::Report& report) {
   return e;
 }
 
-std::string sizeText(const GridGeometry& g) {
-  return std::to_string(g.size.x()) + "x" + std::to_string(g.size.y()) + "x" + std::to_string(g.size.z());
-}
-
-// Voxels and millilitres per summary row, before and after, printed and put in the report.
-void summarize(const Input& in, const Edit& e, io::Report& report) {
-  const std::vector<std::int64_t> after = voxelsPerId(e.map.labels);
-  const double voxelMl = in.map.labels.geometry.spacing.prod() / 1000.0;
-  auto sum = [](const std::vector<std::int64_t>& voxels, const std::vector<Label>& ids) {
-    std::int64_t n = 0;
-    for (Label id : ids) n += voxels[id];
-    return n;
-  };
-  for (const SummaryRow& row : e.rows) {
-    const std::int64_t b = sum(in.voxels, row.before), a = sum(after, row.after);
-    char line[160];
-    std::snprintf(line, sizeof line, ": %lld -> %lld voxels, %.1f -> %.1f mL", (long long)b, (long long)a,
-                  double(b) * voxelMl, double(a) * voxelMl);
-    std::cout << row.name << line << '\n';
-    report.metric(row.name, {{"voxels_before", b},
-                             {"voxels_after", a},
-                             {"ml_before", double(b) * voxelMl},
-                             {"ml_after", double(a) * voxelMl}});
-  }
-  const std::string before = sizeText(in.map.labels.geometry), now = sizeText(e.map.labels.geometry);
-  if (before != now) std::cout << "grid: " << before << " -> " << now << " voxels\n";
-}
-
-// The output map and its table may not replace the input map or the table it was read with.
-void refuseInputsAsOutputs(const LabelsOptions& o) {
-  const std::string inputTable = o.table.empty() ? io::labelTableSidecarPath(o.labels) : o.table;
-  for (const std::string& out : {o.out, io::labelTableSidecarPath(o.out)})
-    for (const std::string& in : {o.labels, inputTable}) {
-      std::error_code ec;
-      if (std::filesystem::equivalent(in, out, ec))
-        throw UsageError(out + ": is an input of this command; choose another --out");
-    }
-}
-
 void runLabels(const LabelsOptions& o, const std::string& action, const Action& act) {
   io::Report report("labels " + action);
   report.input("labels", o.labels);
   if (!o.table.empty()) report.input("table", o.table);
-  refuseInputsAsOutputs(o);
-  const Input in(o, io::readLabelMap(o.labels, o.table));
+  refuseInputsAsOutputs(o.labels, o.table, o.out);
+  const Input in(o);
   Edit e;
   {
     auto timer = report.time(action);
     e = act(in, report);
   }
-  io::writeLabelMap(o.out, e.map, o.common.writeOptions());
-  const std::string table = io::labelTableSidecarPath(o.out);
-  report.output("labels", o.out);
-  report.output("table", table);
-  summarize(in, e, report);
-  std::cout << "labels: " << o.out << "\ntable: " << table << '\n';
-  o.common.finish(report);
+  writeLabelsOutputs(in, e.map, e.rows, o.out, o.common, report);
 }
 
 // One action: --labels, --table, then its own options (`addOwn`), then --out and the common options.

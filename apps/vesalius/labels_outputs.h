@@ -1,0 +1,51 @@
+// What `vesalius labels` writes (docs/cli.md): the edited label map with its table beside it, and the
+// summary of what changed (voxels and millilitres before and after, per row) printed and in the report.
+#pragma once
+
+#include "common.h"
+
+#include "vesalius/core/label_map.h"
+#include "vesalius/io/report.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vesalius::cli {
+
+// The map a `labels` action edits, read from `path`, its voxels per id, and the labels the user names:
+// resolved, checked and named as the summary rows and the messages name them.
+struct LabelsInput {
+  std::string path;
+  LabelMap map;
+  std::vector<std::int64_t> voxels;  // by id: 65536 counts
+
+  LabelsInput(std::string labelsPath, LabelMap labelMap);
+  // "liver (5)", or "5" for an id without a table entry.
+  std::string name(Label id) const;
+  // An id or name that must have voxels (BadInput naming `path` otherwise): editing a label the map does
+  // not hold is a mistake.
+  Label label(const std::string& idOrName) const;
+  // The same for each; UsageError if one is given twice.
+  std::vector<Label> labels(const std::vector<std::string>& idsOrNames) const;
+  // The ids with voxels, but not those of `ids`.
+  std::vector<Label> presentExcept(const std::vector<Label>& ids) const;
+};
+
+// A summary line: the voxels of ids `before` in the input against those of ids `after` in the output.
+struct SummaryRow {
+  std::string name;
+  std::vector<Label> before, after;
+};
+
+// Refuses (UsageError) an --out whose map or table is the input map (`labels`) or the table it is read
+// with (`table`, empty: the one beside the map).
+void refuseInputsAsOutputs(const std::string& labels, const std::string& table, const std::string& out);
+
+// Writes `edited` to `out` with its .tsv table beside it; prints each row's voxels and mL in the input
+// and in `edited` and puts them in the report, says when the grid changed, prints the paths written and
+// finishes the report.
+void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
+                        const std::string& out, const CommonOptions& common, io::Report& report);
+
+}  // namespace vesalius::cli
