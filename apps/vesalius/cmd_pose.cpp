@@ -5,27 +5,21 @@
 // (posing/volume_restoration.h) unless --no-restore-volume, then the tets skinning inverts or flattens are
 // repaired (posing/untangle_tets.h) unless --no-untangle.
 #include "common.h"
+#include "pose_outputs.h"
 #include "posing_session.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
-#include "vesalius/io/anatomy_rig_io.h"
 #include "vesalius/io/image_io.h"
-#include "vesalius/io/mesh_io.h"
-#include "vesalius/io/motion_io.h"
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/pose_quality.h"
-#include "vesalius/posing/posed_volume.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
-#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -50,19 +44,6 @@ std::pair<int, int> frameRange(const PoseOptions& o, int count) {
   return {first, last};
 }
 
-struct Posed {
-  MatrixX3d tets;  // posed tet vertices
-  std::vector<Eigen::Isometry3d> world;
-};
-
-// One pose to put the rig in: posed world transforms of its skeleton, the output folder's name (empty: --out
-// itself) and the motion frame (-1 for --angles).
-struct PoseSpec {
-  std::vector<Eigen::Isometry3d> world;
-  std::string name;
-  int frame = -1;
-};
-
 // The poses asked for: one of --angles, or frames A, A+K, ... <= B of --motion retargeted to the rig.
 std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io::Report& report) {
   if (!o.angles.empty())
@@ -77,123 +58,6 @@ std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io:
     poses.push_back({motion.pose(f), first == last ? "" : name, f});
   }
   return poses;
-}
-
-using posing::PoseQuality;
-
-// quality.tsv: one row per pose; a frame of "-" is an --angles pose.
-void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& poses,
-                       const std::vector<PoseQuality>& quality, const std::string& method,
-                       const WriteOptions& options) {
-  writeAtomically(path, options, [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside"
-           "\tuntangled_tets\tuntangle_max_move_mm\ttet_volume_change_pct\tskinned_tet_volume_change_pct"
-           "\trestore_max_move_mm\n";
-    out.precision(9);
-    for (std::size_t p = 0; p < poses.size(); ++p) {
-      const PoseQuality& q = quality[p];
-      out << (poses[p].frame < 0 ? "-" : std::to_string(poses[p].frame)) << '\t' << method << '\t' << q.inverted
-          << '\t' << q.minVolumeRatio << '\t' << q.skinVolumeChangePct << '\t' << q.leftOutside << '\t'
-          << q.untangle.badBefore << '\t' << q.untangle.maxMove << '\t' << q.tetVolumeChangePct << '\t'
-          << q.skinnedTetVolumeChangePct << '\t' << q.restore.maxMove << '\n';
-    }
-    out.close();  // the last buffered bytes reach the file here, so check after it
-    if (!out) throw BadInput(temporary, "cannot write");
-  });
-}
-
-// Prints the worst value of each measure over all poses (with its frame) and puts it into the report.
-void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
-                        long insideAtRest, io::Report& report) {
-  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0, boneMove = 0;
-  long repairedTotal = 0, boneOnly = 0, unrepaired = 0, released = 0;
-  for (std::size_t p = 0; p < quality.size(); ++p) {
-    repairedTotal += quality[p].untangle.badBefore;
-    boneOnly += quality[p].untangle.fixedBad;
-    unrepaired += quality[p].untangle.badAfter;
-    released += quality[p].untangle.releasedBoneVertices;
-    if (quality[p].untangle.maxBoneMove > quality[boneMove].untangle.maxBoneMove) boneMove = p;
-    if (quality[p].untangle.badBefore > quality[repaired].untangle.badBefore) repaired = p;
-    if (quality[p].untangle.maxMove > quality[move].untangle.maxMove) move = p;
-    if (quality[p].restore.maxMove > quality[restoreMove].restore.maxMove) restoreMove = p;
-    if (quality[p].inverted > quality[inverted].inverted) inverted = p;
-    if (quality[p].minVolumeRatio < quality[ratio].minVolumeRatio) ratio = p;
-    if (std::abs(quality[p].skinVolumeChangePct) > std::abs(quality[skin].skinVolumeChangePct)) skin = p;
-    if (quality[p].leftOutside > quality[left].leftOutside) left = p;
-  }
-  const auto frame = [&](std::size_t p) {
-    return poses[p].frame < 0 ? std::string("-") : std::to_string(poses[p].frame);
-  };
-  report.metric("max_inverted_tets", quality[inverted].inverted);
-  report.metric("min_tet_volume_ratio", quality[ratio].minVolumeRatio);
-  report.metric("worst_skin_volume_change_pct", quality[skin].skinVolumeChangePct);
-  report.metric("max_tissue_vertices_left_outside", quality[left].leftOutside);
-  report.metric("tissue_vertices_inside_at_rest", insideAtRest);
-  std::cout << "worst over " << poses.size() << " pose(s): " << quality[inverted].inverted
-            << " inverted or flat tets (frame " << frame(inverted) << "), smallest posed/rest tet volume "
-            << quality[ratio].minVolumeRatio << " (frame " << frame(ratio) << "), skin volume change "
-            << quality[skin].skinVolumeChangePct << " % (frame " << frame(skin) << "), "
-            << quality[left].leftOutside << " of " << insideAtRest
-            << " tissue vertices inside at rest left outside (frame " << frame(left) << ")\n";
-  report.metric("max_restore_move_mm", quality[restoreMove].restore.maxMove);
-  std::cout << "restoring the volume moved vertices by up to " << quality[restoreMove].restore.maxMove
-            << " mm (frame " << frame(restoreMove) << ")\n";
-  report.metric("untangled_tets", repairedTotal);
-  report.metric("max_untangled_tets", quality[repaired].untangle.badBefore);
-  report.metric("max_untangle_move_mm", quality[move].untangle.maxMove);
-  report.metric("untangle_unrepaired_tets", unrepaired);
-  report.metric("untangle_bone_only_tets", boneOnly);
-  report.metric("untangle_released_bone_vertices", released);
-  report.metric("max_untangle_bone_move_mm", quality[boneMove].untangle.maxBoneMove);
-  std::cout << "untangled " << repairedTotal << " tets below " << posing::UntangleOptions().minVolumeRatio
-            << " of their rest volume in all, at most "
-            << quality[repaired].untangle.badBefore << " in a pose (frame " << frame(repaired)
-            << "); moved vertices by up to " << quality[move].untangle.maxMove << " mm (frame " << frame(move)
-            << "); " << unrepaired << " still below after, of which " << boneOnly
-            << " have only bone vertices (nothing to move)\n";
-  if (released > 0)
-    std::cout << "folds pressed between bones freed " << released << " bone vertices in all, moved by up to "
-              << quality[boneMove].untangle.maxBoneMove << " mm (frame " << frame(boneMove) << ")\n";
-}
-
-// The rest-pose volumes to re-pose, read once for all poses.
-struct Volumes {
-  std::optional<Image> scan;
-  std::optional<LabelMap> labels;
-};
-
-// carried: per mesh, its #P by 3 posed vertices.
-void writePose(const PoseOptions& o, const AnatomyRig& rig, const std::vector<TriMesh>& meshes,
-               const std::vector<MatrixX3d>& carried, const Volumes& volumes, const Posed& posed,
-               const std::string& dir, const std::string& png) {
-  // Every file is new: `dir` is in the staging folder of --out (core/atomic_file.h).
-  const io::MeshWriteOptions write{};
-  fs::create_directories(dir);
-  TetMesh tets = rig.tets;
-  tets.V = posed.tets;
-  io::writeTetMesh(dir + "/tets.vtu", tets, write);
-  io::writeBvh(dir + "/skeleton.bvh", io::posedSkeletonMotion(rig.skeleton, posed.world));
-  std::vector<TriMesh> out = meshes;
-  for (std::size_t m = 0; m < meshes.size(); ++m) {
-    out[m].V = carried[m];
-    io::writeTriMesh(dir + "/" + fs::path(rig.meshes[m]).filename().string(), out[m], write);
-  }
-  if (volumes.scan)
-    io::writeScan(dir + "/" + fs::path(o.volume).filename().string(),
-                  posing::poseImage(rig.tets.V, rig.tets.T, posed.tets, *volumes.scan));
-  if (volumes.labels)
-    io::writeLabelMap(dir + "/" + fs::path(o.labels).filename().string(),
-                      posing::poseLabels(rig.tets.V, rig.tets.T, posed.tets, *volumes.labels));
-  if (!png.empty()) {
-    // The skin translucent over the other meshes, as the viewer of the issue shows them.
-    std::vector<viz::SurfaceLayer> layers;
-    for (std::size_t m = 0; m < out.size(); ++m) {
-      const bool isSkin = fs::path(rig.meshes[m]).stem() == "skin";
-      layers.push_back({&out[m], isSkin ? viz::Rgb{{230, 190, 160}} : viz::Rgb{{235, 235, 220}}, isSkin && out.size() > 1 ? 0.35 : 1.0});
-    }
-    viz::writeSurfacesPng(layers, png, viz::SurfaceRenderOptions{800, 800, {{24, 24, 28}}, {}});
-  }
 }
 
 void checkOptions(const PoseOptions& o) {
@@ -228,8 +92,10 @@ void runPose(const PoseOptions& o) {
   Volumes volumes;
   if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
+  volumes.scanName = fs::path(o.volume).filename().string();
+  volumes.labelsName = fs::path(o.labels).filename().string();
   const posing::QualityMeter meter(rig, meshes, session.embeddings());
-  std::vector<PoseQuality> quality;
+  std::vector<posing::PoseQuality> quality;
   double skinningSeconds = 0, restoreSeconds = 0, untangleSeconds = 0;  // skinning includes both
   // Every pose into the staging folders `out` and `pngDir`, then quality.tsv.
   const auto poseAll = [&](const std::string& out, const std::string& pngDir) {
@@ -237,12 +103,12 @@ void runPose(const PoseOptions& o) {
     progress.begin("pose", o.method);
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const auto start = std::chrono::steady_clock::now();
-      Posed posed{MatrixX3d(), poses[p].world};
-      const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, posed.tets);
+      MatrixX3d tets;
+      const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, tets);
       skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::vector<MatrixX3d> carried;
-      session.carry(posed.tets, carried);
-      quality.push_back(meter(posed.tets, carried));
+      session.carry(tets, carried);
+      quality.push_back(meter(tets, carried));
       quality.back().restore = repairs.restore;
       quality.back().untangle = repairs.untangle;
       quality.back().skinnedTetVolumeChangePct =
@@ -253,7 +119,7 @@ void runPose(const PoseOptions& o) {
         const std::string& name = poses[p].name;
         const std::string dir = name.empty() ? out : out + "/" + name;
         const std::string png = pngDir.empty() ? "" : pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
-        writePose(o, rig, meshes, carried, volumes, posed, dir, png);
+        writePose(rig, meshes, carried, volumes, tets, poses[p].world, dir, png);
       }
       progress.update(double(p + 1) / poses.size());
     }
