@@ -177,7 +177,7 @@ void writeTriMesh(const std::string& path, const TriMesh& mesh, const MeshWriteO
   mesh.validate("mesh to write to " + path);
   const std::string ext = fileExtension(path);
   if (ext == ".stl")
-    writeTextAtomically(path, options, options.binary ? formatStlBinary(mesh) : formatStlAscii(mesh));
+    writeTextAtomically(path, options, options.binary ? formatStlBinary(mesh, path) : formatStlAscii(mesh));
   else if (ext == ".obj")
     writeTextAtomically(path, options, formatObj(mesh));
   else if (ext == ".ply" || ext == ".vtk" || ext == ".vtp")

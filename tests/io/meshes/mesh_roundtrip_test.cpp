@@ -287,6 +287,21 @@ TEST_P(SurfaceRoundTrip, LiverWithPerVertexUv) {
   expectSurfaceRoundTrip(liver, "liver-uv", GetParam());
 }
 
+// Writing a binary STL whose coordinate float32 cannot hold names the output file, and leaves no file.
+TEST(SurfaceFiles, BinaryStlBeyondFloat32IsRefusedNamingTheFile) {
+  TriMesh liver = readTriMesh(kLiverSurface);
+  liver.V(0, 2) = 1e60;
+  const std::string path = output("beyond-float32.stl");
+  try {
+    writeTriMesh(path, liver, options(true));
+    ADD_FAILURE() << "written";
+  } catch (const BadInput& e) {
+    std::cout << e.what() << "\n";
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
 // A closed surface keeps every vertex, and so its vertex numbers, where two vertices lie at one point (a
 // transfer can land two skin vertices there); only STL, which stores no shared corners, merges them.
 TEST_P(SurfaceRoundTrip, ClosedSurfaceWithTwoVerticesAtOnePoint) {
