@@ -34,6 +34,7 @@ struct PatientOptions {
   int frame = 0;
   std::string reference;     // a full-body reference folder; empty: built from the shipped sources
   bool complete = true;      // complete the full-body reference into the patient
+  bool referenceOrgans = false;  // the built reference holds the shipped organs and muscles
   bool png = false;
   long rigTets = 0;        // 0: the rig's own default
   double rigVoxelSize = 0;  // 0: the rig's own default
@@ -41,19 +42,6 @@ struct PatientOptions {
   patient::PatientPoseOptions posing;
   CommonOptions common;
 };
-
-// Every <organ>.obj (.stl .ply .vtp) of the library folder, the organ named by the file's stem.
-std::vector<patient::OrganTemplate> readTemplates(const std::string& folder) {
-  if (!fs::is_directory(folder)) throw BadInput(folder, "no such template folder");
-  std::vector<patient::OrganTemplate> templates;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
-    const std::string ext = fileExtension(e.path().string());
-    if (!e.is_regular_file() || (ext != ".obj" && ext != ".stl" && ext != ".ply" && ext != ".vtp")) continue;
-    templates.push_back({e.path().stem().string(), io::readTriMesh(e.path().string()), e.path().string()});
-  }
-  std::sort(templates.begin(), templates.end(), [](const auto& a, const auto& b) { return a.organ < b.organ; });
-  return templates;
-}
 
 // --pose's syntax and joint names, before the work: the whole model's rig has OpenSim's bodies
 // (posing/skeleton_from_bone_meshes.h); without the reference, the rig has the pelvis, the femurs and the
@@ -72,13 +60,17 @@ void checkPoseJoints(const PatientOptions& o) {
 }
 
 // The full-body reference to complete into the patient: --reference's folder, or built from the shipped
-// MakeHuman body and OpenSim model as `vesalius reference full-body` builds it by default.
+// MakeHuman body and OpenSim model as `vesalius reference full-body` builds it, with --reference-organs with
+// the shipped organs and muscles made for that body (templates/reference-organs/, patient/reference_organs.h).
+// With --organs the patient's own organs take the place of the reference's of the same names
+// (patient/whole_model.h).
 ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
   if (!o.reference.empty()) return io::readReferenceAnatomy(o.reference);
   const std::string skeleton = VESALIUS_DATA_DIR "/body/default.mhskel";
   const patient::FullBodySources sources =
       readFullBodySources(VESALIUS_DATA_DIR "/body/shapes/mh_neutral_body.obj", skeleton, "",
-                          VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim");
+                          VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim",
+                          o.referenceOrgans ? kShippedReferenceOrgans : "");
   return patient::buildFullBodyReference(sources, skeleton).anatomy;
 }
 
@@ -103,7 +95,7 @@ void runPatient(const PatientOptions& o) {
   const Image scan = io::readScan(o.scan);
   std::optional<LabelMap> organs;
   if (!o.organs.empty()) organs = io::readLabelMap(o.organs, o.organTable);
-  const std::vector<patient::OrganTemplate> templates = readTemplates(o.templates);
+  const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
   std::optional<Motion> motion;
   if (!o.motion.empty()) {
     motion = readMotion(o.motion);
@@ -195,6 +187,10 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
                  "Full-body reference folder to complete into the patient beyond the scan (`vesalius reference "
                  "full-body`); default: built from the shipped MakeHuman body and OpenSim model");
   cmd.add_flag("!--no-reference", o.complete, "Do not complete the full-body reference into the patient");
+  cmd.add_flag("--reference-organs", o.referenceOrgans,
+               "The built full-body reference with the shipped organs and muscles (templates/reference-organs/): "
+               "those --organs lacks (all without --organs) come from it; they lie too far up the body "
+               "(docs/virtual-patient.md)");
   cmd.add_option("--pose", o.pose,
                  "Also pose the patient by joint angles in degrees, e.g. 'femur_l=-30,0,0; femur_r=-30,0,0' (both hips "
                  "flexed 30 degrees); the joints are OpenSim's: pelvis, femur_l, tibia_l, talus_l, torso, humerus_l, "

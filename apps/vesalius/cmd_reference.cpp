@@ -1,13 +1,15 @@
 // vesalius reference torso: a reference anatomy for anatomy transfer (seed 000 §3, Fig. 2.c) built from a
 // labelled CT: the body's surface as the skin, every label of the segmentation as a bone, muscle or organ.
 // vesalius reference full-body: MakeHuman's skin with an OpenSim model's bones placed inside it
-// (patient/full_body_reference.h).
+// (patient/full_body_reference.h). vesalius reference organs: a labelled CT's organs and muscles carried
+// into that reference's skin (patient/reference_organs.h), the folder shipped as templates/reference-organs/.
 #include "common.h"
 #include "full_body_sources.h"
 
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/patient/full_body_reference.h"
+#include "vesalius/patient/reference_organs.h"
 #include "vesalius/patient/scan_anatomy.h"
 
 #include <iostream>
@@ -16,6 +18,13 @@ namespace vesalius::cli {
 
 namespace {
 
+// The organs and muscles of a reference (the rest are bones).
+long softTissueCount(const ReferenceAnatomy& anatomy) {
+  long n = 0;
+  for (const ReferenceTissue& t : anatomy.tissues) n += t.kind == TissueKind::Organ || t.kind == TissueKind::Muscle;
+  return n;
+}
+
 struct ReferenceOptions {
   std::string scan, labels, table, out, name;
   int skinFaces = 20000, tissueFaces = 3000;
@@ -23,7 +32,13 @@ struct ReferenceOptions {
 };
 
 struct FullBodyOptions {
-  std::string skin, skeleton, baseMesh, model, out;
+  std::string skin, skeleton, baseMesh, model, organMeshes, out;
+  CommonOptions common;
+};
+
+struct OrgansOptions {
+  std::string scan, organs, organTable, reference, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
+  patient::ReferenceOrgansOptions method;
   CommonOptions common;
 };
 
@@ -70,7 +85,7 @@ void runFullBody(const FullBodyOptions& o) {
   report.input("model", o.model);
   patient::FullBodyReference built;
   {
-    const patient::FullBodySources sources = readFullBodySources(o.skin, o.skeleton, o.baseMesh, o.model);
+    const patient::FullBodySources sources = readFullBodySources(o.skin, o.skeleton, o.baseMesh, o.model, o.organMeshes);
     auto timer = report.time("placement");
     built = patient::buildFullBodyReference(sources, o.skeleton);
   }
@@ -87,11 +102,63 @@ void runFullBody(const FullBodyOptions& o) {
   report.metric("bone_vertices_outside_skin", built.outsideAfter);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
   report.output("reference", o.out);
-  report.metric("bones", anatomy.tissues.size());
+  report.metric("bones", anatomy.tissues.size() - softTissueCount(anatomy));
+  report.metric("organs_and_muscles", softTissueCount(anatomy));
   report.metric("points", anatomy.points.size());
   report.metric("head_slices", built.headSlices);
-  std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices, " << anatomy.tissues.size() << " bone meshes, "
-            << anatomy.points.size() << " points (muscle paths and joint centres)\n";
+  const long soft = softTissueCount(anatomy);
+  std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices, " << anatomy.tissues.size() - soft
+            << " bone meshes, " << soft << " organs and muscles, " << anatomy.points.size()
+            << " points (muscle paths and joint centres)\n";
+  o.common.finish(report);
+}
+
+// The organs and muscles of a labelled CT carried into the full-body reference (patient/reference_organs.h).
+void runOrgans(const OrgansOptions& o) {
+  for (const std::string& input : {o.scan, o.organs, o.organTable, o.reference, o.templates})
+    if (!input.empty()) protectInput(input);
+  checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
+  io::Report report("reference organs");
+  report.input("scan", o.scan);
+  report.input("organs", o.organs);
+  report.input("templates", o.templates);
+  Progress progress(o.common.progressStyle());
+  const Image ct = io::readScan(o.scan);
+  const LabelMap organs = io::readLabelMap(o.organs, o.organTable);
+  const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
+  ReferenceAnatomy reference;
+  if (!o.reference.empty()) {
+    report.input("reference", o.reference);
+    reference = io::readReferenceAnatomy(o.reference);
+  } else {
+    progress.begin("reference", "the full-body reference");
+    const std::string skeleton = VESALIUS_DATA_DIR "/body/default.mhskel";
+    reference = patient::buildFullBodyReference(
+                    readFullBodySources(VESALIUS_DATA_DIR "/body/shapes/mh_neutral_body.obj", skeleton, "",
+                                        VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim"),
+                    skeleton)
+                    .anatomy;
+    progress.end();
+  }
+  const patient::ReferenceOrgans made =
+      patient::referenceOrgans(ct, organs, templates, reference, o.method, o.scan, o.organs, &progress);
+  io::writeReferenceAnatomy(o.out, made.anatomy, o.common.writeOptions());
+  report.output("reference", o.out);
+  nlohmann::json tissues;
+  long outside = 0;
+  for (const patient::CarriedTissue& t : made.carried) {
+    tissues[t.name] = {{"kind", tissueKindName(t.kind)}, {"vertices", t.vertices},
+                       {"outside_skin_carried", t.outsideCarried}, {"outside_skin", t.outsideSkin}};
+    outside += t.outsideSkin;
+  }
+  report.metric("tissues", tissues);
+  report.metric("scan_skin_to_completed_mean_mm", made.scanSkinToCompletedMeanMm);
+  report.metric("bend_largest_mm", made.bendLargestMm);
+  nlohmann::json stages;
+  for (const auto& [stage, seconds] : made.stageSeconds) stages[stage] = seconds;
+  report.metric("stage_seconds", stages);
+  std::cout << o.out << ": " << made.anatomy.tissues.size() << " organs and muscles in the reference's skin ("
+            << outside << " vertices outside it)\n";
   o.common.finish(report);
 }
 
@@ -123,13 +190,48 @@ void addReferenceCommand(CLI::App& app) {
   full->add_option("--skeleton", f->skeleton, "MakeHuman default rig (.mhskel)")->required();
   full->add_option("--base-mesh", f->baseMesh, "MakeHuman base.obj for the rig, and the uv of a skin without them (default: beside the rig)");
   full->add_option("--model", f->model, "OpenSim model (.osim) with its Geometry folder beside it")->required();
+  full->add_option("--organ-meshes", f->organMeshes,
+                    "Reference folder of organs and muscles made for this skin (`vesalius reference organs`; "
+                    "templates/reference-organs for the shipped neutral body), added to the bones");
   full->add_option("--out", f->out, "Reference folder to write")->required();
   addCommonOptions(*full, f->common);
   full->footer(
       "Example:\n  vesalius reference full-body --skin testdata/body/shapes/mh_neutral_body.obj \\\n"
-      "    --skeleton testdata/body/default.mhskel --model testdata/skeleton-opensim/Rajagopal2016.osim --out body-reference\n"
+      "    --skeleton testdata/body/default.mhskel --model testdata/skeleton-opensim/Rajagopal2016.osim \\\n"
+      "    --organ-meshes templates/reference-organs --out body-reference\n"
       "The skeleton is placed by seed 004's body frame and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
   full->callback([f] { runFullBody(*f); });
+
+  auto g = std::make_shared<OrgansOptions>();
+  CLI::App* organs = cmd->add_subcommand(
+      "organs", "Organs and muscles of a labelled CT carried into the full-body reference's skin (its virtual patient, transferred back)");
+  organs->add_option("--scan", g->scan, "The CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
+  organs->add_option("--organs", g->organs, "Its organ label map (TotalSegmentator's names)")->required();
+  organs->add_option("--organ-table", g->organTable, "Its label table (default: the one beside it)");
+  organs->add_option("--templates", g->templates, "Organ template library fitted to the labels")->capture_default_str();
+  organs->add_option("--reference", g->reference,
+                     "Full-body reference folder without organs (default: built from the shipped MakeHuman body and OpenSim model)");
+  organs->add_option("--markers", g->method.patient.organFit.markers, "Markers spread over each fitted organ's label")
+      ->check(CLI::Range(10, 10000))
+      ->capture_default_str();
+  organs->add_option("--organ-tets", g->method.patient.organFit.targetTets, "About this many tets per organ fit")
+      ->check(CLI::Range(500L, 1000000L))
+      ->capture_default_str();
+  organs->add_option("--refits", g->method.patient.organFit.refits, "Refits of each organ fit")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  organs->add_option("--tissue-faces", g->method.patient.surfaces.tissueFaces, "Triangles of each label's surface")
+      ->check(CLI::Range(200, 100000))
+      ->capture_default_str();
+  organs->add_option("--out", g->out, "Reference folder to write (the reference's skin, tissues/<organ>.obj)")->required();
+  addCommonOptions(*organs, g->common);
+  organs->footer(
+      "Example:\n  vesalius reference organs --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz \\\n"
+      "    --organs testdata/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz \\\n"
+      "    --organ-table testdata/ct-abdomen-pelvis/labels_total_v1.tsv --out templates/reference-organs\n"
+      "Keeps the abdominal and pelvic organs, their vessels and the gluteal, iliopsoas and back muscles; "
+      "see docs/virtual-patient.md.");
+  organs->callback([g] { runOrgans(*g); });
 }
 
 }  // namespace vesalius::cli

@@ -4,14 +4,19 @@
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/makehuman_uv.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/core/error.h"
 #include "vesalius/io/skeleton_io.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace vesalius::cli {
 
 patient::FullBodySources readFullBodySources(const std::string& skin, const std::string& skeleton,
-                                             const std::string& baseMesh, const std::string& model) {
+                                             const std::string& baseMesh, const std::string& model,
+                                             const std::string& organs) {
   namespace fs = std::filesystem;
   const std::string base = baseMesh.empty() ? (fs::path(skeleton).parent_path() / "base.obj").string() : baseMesh;
   patient::FullBodySources s;
@@ -32,7 +37,24 @@ patient::FullBodySources readFullBodySources(const std::string& skin, const std:
     s.geometry.push_back(std::move(mesh));
     s.geometryNames.push_back(fs::path(g.meshFile).stem().string());
   }
+  if (!organs.empty()) {
+    s.organs = io::readReferenceAnatomy(organs);
+    s.organsSource = organs;
+  }
   return s;
+}
+
+std::vector<patient::OrganTemplate> readOrganTemplates(const std::string& folder) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(folder)) throw BadInput(folder, "no such template folder");
+  std::vector<patient::OrganTemplate> templates;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    const std::string ext = fileExtension(e.path().string());
+    if (!e.is_regular_file() || (ext != ".obj" && ext != ".stl" && ext != ".ply" && ext != ".vtp")) continue;
+    templates.push_back({e.path().stem().string(), io::readTriMesh(e.path().string()), e.path().string()});
+  }
+  std::sort(templates.begin(), templates.end(), [](const auto& a, const auto& b) { return a.organ < b.organ; });
+  return templates;
 }
 
 }  // namespace vesalius::cli

@@ -1,5 +1,7 @@
 #include "vesalius/patient/full_body_reference.h"
 
+#include "skin_distances.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/reference_anatomy_io.h"
@@ -29,26 +31,6 @@ bool isTrunkBody(const std::string& body) { return body == "pelvis" || body == "
 // and one trunk map scaled the skull with a muscular body's chest (determinant 1.9) into its face.
 std::string boneGroup(const std::string& body, const std::string& mesh) {
   return body == "torso" && (mesh == "hat_skull" || mesh == "hat_jaw") ? io::kSkullGroup : body;
-}
-
-// Signed distances to a closed skin (transfer::SkinDistanceFunction): distance and outward direction from
-// the closest point on it, the side from the signed distance field the transfer's rules R5, R6 use
-// (meshing/body_distance.h).
-transfer::SkinDistanceFunction skinDistances(const TriMesh& skin) {
-  const auto field = std::make_shared<const Grid<float>>(meshing::bodySignedDistance(skin).signedDistance);
-  const auto tree = std::make_shared<const TriangleTree>(skin.V, skin.F);
-  return [field, tree](const MatrixX3d& P) {
-    const std::vector<ClosestPoint> closest = tree->closest(P);
-    const Eigen::VectorXd sampled = transfer::sampleSignedDistance(*field, P, meshing::kDistanceBandMm);
-    transfer::SkinDistances d{Eigen::VectorXd(P.rows()), MatrixX3d::Zero(P.rows(), 3)};
-    for (Eigen::Index r = 0; r < P.rows(); ++r) {
-      const double side = sampled[r] < 0 ? -1.0 : 1.0;
-      const Eigen::Vector3d away = P.row(r).transpose() - closest[std::size_t(r)].point;
-      d.distance[r] = side * away.norm();
-      if (away.norm() > 1e-9) d.outward.row(r) = side * away.normalized().transpose();
-    }
-    return d;
-  };
 }
 
 // The bones that move inside the skin together, by name: a trunk group (symmetric, seed 000 §8) as one,
@@ -133,11 +115,22 @@ MatrixX3d placedJoints(const Skeleton& bodies, const transfer::SkeletonPlacement
   return joints;
 }
 
+// Step 4's organs were carried into this very skin (reference_organs.h), so they are added unmoved; in
+// another body's skin they would lie wrong, which the skin's vertices tell (0.01 mm: OBJ keeps every digit).
+void checkOrgansSkin(const TriMesh& skin, const ReferenceAnatomy& organs, const std::string& source) {
+  constexpr double kSameSkinMm = 0.01;
+  if (organs.skin.V.rows() != skin.V.rows() || (organs.skin.V - skin.V).rowwise().norm().maxCoeff() > kSameSkinMm)
+    throw BadInput(source, "its organs were made for another skin than the reference's (" +
+                               std::to_string(organs.skin.V.rows()) + " skin vertices against " +
+                               std::to_string(skin.V.rows()) + ", or moved)");
+}
+
 }  // namespace
 
 FullBodyReference buildFullBodyReference(const FullBodySources& sources, const std::string& skeletonSource) {
   if (sources.geometry.size() != sources.model.geometry.size() || sources.geometryNames.size() != sources.geometry.size())
     throw BadInput(skeletonSource, "full-body reference: one mesh and one name per geometry entry are needed");
+  if (sources.organs) checkOrgansSkin(sources.skin, *sources.organs, sources.organsSource);
   FullBodyReference result;
   ReferenceAnatomy& anatomy = result.anatomy;
   anatomy.name = sources.name;
@@ -194,6 +187,9 @@ FullBodyReference buildFullBodyReference(const FullBodySources& sources, const s
                               placeAsMesh(tissue, int(b), MatrixX3d::Zero(1, 3)).row(0).transpose()});
   }
   moveBonesInsideSkin(result, placedJoints(model.bodies, placement));
+  if (sources.organs)
+    for (const ReferenceTissue& t : sources.organs->tissues)
+      if (t.kind == TissueKind::Organ || t.kind == TissueKind::Muscle) anatomy.tissues.push_back(t);
   return result;
 }
 

@@ -14,6 +14,8 @@
 //     place (transfer/bones_inside_skin.h; trunk groups kept symmetric), what is still outside then bent
 //     inside (transfer/bones_warped_into_skin.h), the points fixed to its bones with it. "Inside" counts
 //     the skin's cavities (meshing/body_distance.h): the skull and jaw need the mouth.
+//  4. Given organs and muscles made for this skin (FullBodySources::organs: reference_organs.h, shipped in
+//     templates/reference-organs/), each added as it is, of its kind.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -22,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,10 @@ struct FullBodySources {
   MusculoskeletalModel model;       // the OpenSim model: bodies, geometry entries, muscle paths
   std::vector<TriMesh> geometry;    // per model.geometry entry: the mesh in its body's frame, scaled
   std::vector<std::string> geometryNames;  // per entry: the mesh's name (its file's stem), the tissue name
+  // Step 4: a reference folder of organs and muscles whose skin is `skin` (`vesalius reference organs`);
+  // its organ and muscle tissues are added. None: the reference is bones alone.
+  std::optional<ReferenceAnatomy> organs;
+  std::string organsSource;  // names it in messages
 };
 
 // Step 3's change of one unit of bones.
@@ -52,7 +59,8 @@ struct FullBodyReference {
   int headSlices = 0;                        // the body frame's head slices
 };
 
-// Throws BadInput naming `skeletonSource` if the rig lacks a leg joint, and as the placement does.
+// Throws BadInput naming `skeletonSource` if the rig lacks a leg joint, and as the placement does; naming
+// `sources.organsSource` if the organs' skin is not `sources.skin` (made for another body).
 FullBodyReference buildFullBodyReference(const FullBodySources& sources, const std::string& skeletonSource);
 
 }  // namespace vesalius::patient
