@@ -46,6 +46,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -244,6 +245,24 @@ int plyTypeBytes(const std::string& type) {
   return found == kBytes.end() ? 0 : found->second;
 }
 
+// The words of a PLY header or ASCII data line as vtkPLYReader splits it: up to a NUL byte (it reads C
+// strings), with the first "vertex_index" overwritten by "vertex_indices" and its terminating NUL (which
+// ends the line there), at spaces, tabs and carriage returns only.
+std::vector<std::string> plyWords(std::string_view text) {
+  std::string line(text.substr(0, text.find('\0')));
+  const std::size_t renamed = line.find("vertex_index");
+  if (renamed != std::string::npos) line = line.substr(0, renamed) + "vertex_indices";
+  std::vector<std::string> words;
+  const auto separator = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  for (std::size_t i = 0; i < line.size();) {
+    while (i < line.size() && separator(line[i])) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !separator(line[i])) ++i;
+    if (i > start) words.push_back(line.substr(start, i - start));
+  }
+  return words;
+}
+
 // The header's format ("ascii", "binary_little_endian", "binary_big_endian") and elements; `bodyStart`
 // receives the offset of the data.
 std::string parsePlyHeader(const std::string& bytes, const std::string& path, std::vector<PlyElement>& elements,
@@ -252,7 +271,7 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
   std::size_t end = std::string::npos;
   for (std::size_t line = 0; line < bytes.size() && end == std::string::npos;) {
     const std::size_t next = std::min(bytes.find('\n', line), bytes.size());
-    const std::vector<std::string_view> words = splitWhitespace(std::string_view(bytes).substr(line, next - line));
+    const std::vector<std::string> words = plyWords(std::string_view(bytes).substr(line, next - line));
     if (!words.empty() && words[0] == "end_header") end = line;
     line = next + 1;
   }
@@ -263,10 +282,22 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
   std::istringstream header(bytes.substr(0, end));
   std::string line, format;
   std::vector<std::string> vertexProperties;
-  while (std::getline(header, line)) {
-    std::istringstream words(line);
-    std::string keyword, a, b, c;
-    words >> keyword >> a >> b >> c;
+  std::map<std::size_t, std::vector<std::string>> propertyNames;  // by element
+  // vtkPLYReader ends the header at a line without words and indexes the words an element or property line
+  // should have without counting them.
+  for (int number = 1; std::getline(header, line); ++number) {
+    std::vector<std::string> words = plyWords(line);
+    const std::size_t needed = words.empty() ? 1
+                               : words[0] == "element" ? 3
+                               : words[0] == "property" ? (words.size() > 1 && words[1] == "list" ? 5 : 3)
+                                                        : 1;
+    if (words.size() < needed || line.size() >= 4080)
+      throw BadInput(path, "PLY header line " + std::to_string(number) +
+                               (words.empty()            ? " is empty"
+                                : line.size() >= 4080 ? " is 4080 bytes or longer"
+                                                         : " has too few words"));
+    words.resize(std::max<std::size_t>(words.size(), 5));
+    const std::string keyword(words[0]), a(words[1]), b(words[2]), c(words[3]);
     if (keyword == "format") format = a;
     if (keyword == "element") {
       for (const PlyElement& e : elements)
@@ -277,8 +308,22 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
     if (elements.empty()) throw BadInput(path, "PLY property before any element");
     const bool list = a == "list";
     const std::string& valueType = list ? c : a;
-    std::string propertyName;
-    words >> propertyName;
+    const std::string propertyName(words[4]);
+    // vtkPLYReader reads a list of the vertices or faces it has no use for through an uninitialised
+    // pointer (a segfault); the face lists it asks for are vertex_indices and texcoord.
+    const std::string& element = elements.back().name;
+    if (list && (element == "vertex" || element == "face") &&
+        !(element == "face" &&
+          (propertyName == "vertex_indices" || propertyName == "vertex_index" || propertyName == "texcoord")))
+      throw BadInput(path, "PLY " + element + " property '" + propertyName +
+                               "' is a list, which VTK's PLY reader cannot skip");
+    // vtkPLYReader asks for a property by name and gets the first; a second of that name is one it has not
+    // asked for (read through an uninitialised pointer when a list).
+    const std::string name = list ? propertyName : b;
+    std::vector<std::string>& names = propertyNames[elements.size() - 1];
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw BadInput(path, "PLY " + element + " property '" + name + "' is declared twice");
+    names.push_back(name);
     if (elements.back().name == "vertex") vertexProperties.push_back(list ? propertyName : b);
     PlyProperty property{plyTypeBytes(valueType), list ? plyTypeBytes(b) : 0, plyTypeIsFloat(valueType),
                          plyTypeIsSigned(valueType),
@@ -288,8 +333,20 @@ std::string parsePlyHeader(const std::string& bytes, const std::string& path, st
       throw BadInput(path, "PLY property with an unknown type: " + line);
     elements.back().properties.push_back(property);
   }
-  for (const PlyElement& e : elements)
+  // vtkPLYReader frees the property list of an element without properties, which it never allocated. It
+  // reads the vertices and then the faces where it finds them and skips no other element, so one before
+  // them would be read as vertices or faces (indices beyond the points, a segfault).
+  bool vertices = false, faces = false;
+  for (const PlyElement& e : elements) {
     if (e.count < 0) throw BadInput(path, "PLY element '" + e.name + "' has a negative count");
+    if (e.properties.empty()) throw BadInput(path, "PLY element '" + e.name + "' has no properties");
+    if (e.name == "face" && !vertices) throw BadInput(path, "PLY faces come before the vertices");
+    if (e.name != "vertex" && e.name != "face" && !(vertices && faces))
+      throw BadInput(path, "PLY element '" + e.name + "' comes before the vertices or faces, which VTK's PLY reader "
+                           "does not skip");
+    vertices = vertices || e.name == "vertex";
+    faces = faces || e.name == "face";
+  }
   // vtkPLYReader segfaults on a file whose vertices lack x, y or z (in its error path), and frees memory it
   // never allocated for a file without faces or whose faces have no vertex list.
   for (const char* axis : {"x", "y", "z"})
@@ -370,9 +427,11 @@ void walkPlyBinary(const std::string& bytes, std::size_t offset, bool bigEndian,
       }
 }
 
-// vtkPLYReader reads ASCII data a line per element, as a C string of at most 4095 bytes, and takes a missing
-// word as a null pointer (a segfault in strtod), so each element must be on a line of its own holding all
-// its values before any NUL byte.
+// vtkPLYReader reads ASCII data a line per element, as a C string of at most 4095 bytes in which it
+// lengthens "vertex_index" to "vertex_indices", and takes a missing word as a null pointer (a segfault in
+// strtod); a last line without its newline reads as the end of the file, on which it frees memory twice.
+// So each element must be on a line of its own, ended by a newline, holding all its values before any NUL
+// byte.
 void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vector<PlyElement>& elements,
                   const std::string& path) {
   const std::string_view body = std::string_view(bytes).substr(offset);
@@ -381,23 +440,25 @@ void walkPlyAscii(const std::string& bytes, std::size_t offset, const std::vecto
   for (const PlyElement& e : elements)
     for (long long i = 0; i < e.count; ++i) {
       if (lineStart >= body.size()) plyEndsEarly(path, e, i);
-      const std::size_t lineEnd = std::min(body.find('\n', lineStart), body.size());
-      if (lineEnd - lineStart >= 4095)
-        throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " is on a line of 4095 bytes or more");
+      const std::size_t lineEnd = body.find('\n', lineStart);
+      if (lineEnd == std::string_view::npos)
+        throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) +
+                                 " is on a line without a newline at its end");
+      if (lineEnd - lineStart >= 4080)
+        throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " is on a line of 4080 bytes or more");
       std::string_view line = body.substr(lineStart, lineEnd - lineStart);
-      line = line.substr(0, line.find('\0'));
-      const std::vector<std::string_view> tokens = splitWhitespace(line);
+      const std::vector<std::string> tokens = plyWords(line);
       lineStart = lineEnd + 1;
       std::size_t next = 0;
       for (const PlyProperty& p : e.properties) {
         if (next >= tokens.size())
           throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " has too few values on its line");
-        const long long values = p.countBytes ? std::strtoll(std::string(tokens[next++]).c_str(), nullptr, 10) : 1;
+        const long long values = p.countBytes ? std::strtoll(tokens[next++].c_str(), nullptr, 10) : 1;
         if (values < 0 || static_cast<std::size_t>(values) > tokens.size() - next)
           throw BadInput(path, "PLY " + e.name + " " + std::to_string(i + 1) + " has too few values on its line");
         if (p.vertexIndices)
           for (long long v = 0; v < values; ++v)
-            checkPlyVertexIndex(std::strtod(std::string(tokens[next + std::size_t(v)]).c_str(), nullptr), vertices,
+            checkPlyVertexIndex(std::strtod(tokens[next + std::size_t(v)].c_str(), nullptr), vertices,
                                 path, i);
         next += static_cast<std::size_t>(values);
       }
@@ -415,6 +476,329 @@ void checkPlyStructure(const std::string& path) {
     walkPlyBinary(bytes, bodyStart, format == "binary_big_endian", elements, path);
   else
     throw BadInput(path, "unknown PLY format '" + format + "'");
+}
+
+// vtkPolyDataReader closes its file when a number in a legacy cell list is malformed and then reads on from
+// the closed stream (a segfault), dereferences a null FIELD when one of its arrays fails, allocates what
+// POINTS, FIELD and the cell headers declare before reading anything, and builds cells from the sizes in a
+// list without checking them against the list's length or the points. So the geometry of a legacy POLYDATA
+// file (header, FIELD, POINTS, VERTICES, LINES, POLYGONS, TRIANGLE_STRIPS, in the cell layout of files
+// before version 5 and in the OFFSETS/CONNECTIVITY one of 5.x) is walked first, word by word as
+// vtkDataReader reads it. What follows the first POINT_DATA or CELL_DATA is left to VTK, which checks those
+// counts against the points and cells it has read.
+struct VtkValueType {
+  int bytes = 0;
+  bool isFloat = false, isSigned = false;
+};
+
+// The numeric array types of the legacy format, by their (lower case) names in the file.
+bool legacyVtkValueType(const std::string& name, VtkValueType& type) {
+  static const std::map<std::string, VtkValueType> kTypes = {
+      {"char", {1, false, true}},          {"signed_char", {1, false, true}},   {"unsigned_char", {1, false, false}},
+      {"short", {2, false, true}},         {"unsigned_short", {2, false, false}}, {"vtkidtype", {4, false, true}},
+      {"int", {4, false, true}},           {"unsigned_int", {4, false, false}}, {"long", {8, false, true}},
+      {"unsigned_long", {8, false, false}}, {"vtktypeint64", {8, false, true}},  {"vtktypeuint64", {8, false, false}},
+      {"float", {4, true, true}},          {"double", {8, true, true}}};
+  const auto found = kTypes.find(name);
+  if (found == kTypes.end()) return false;
+  type = found->second;
+  return true;
+}
+
+std::string lowerCase(std::string_view text) {
+  std::string lower(text);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  return lower;
+}
+
+bool startsWith(const std::string& text, const char* prefix) { return text.rfind(prefix, 0) == 0; }
+
+// A word of the file as a message can show it: at most 40 characters, bytes that do not print as '?'.
+std::string shown(std::string_view word) {
+  std::string text(word.substr(0, 40));
+  for (char& c : text)
+    if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+  return word.size() > 40 ? text + "..." : text;
+}
+
+class LegacyVtkWalk {
+ public:
+  LegacyVtkWalk(const std::string& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+
+  void run() {
+    header();
+    if (!startsWith(lowerCase(word("DATASET")), "dataset"))
+      fail(wordAt_, "expected DATASET POLYDATA, found '" + shown(word_) + "'");
+    if (!startsWith(lowerCase(word("the dataset type")), "polydata"))
+      fail(wordAt_, "expected DATASET POLYDATA, found DATASET " + shown(word_));
+    while (at_ < bytes_.size()) {
+      const std::string keyword = lowerCase(word(nullptr));
+      if (keyword.empty()) break;
+      if (startsWith(keyword, "field"))
+        field();
+      else if (startsWith(keyword, "points"))
+        points();
+      else if (startsWith(keyword, "vertices") || startsWith(keyword, "lines") || startsWith(keyword, "polygons") ||
+               startsWith(keyword, "triangle_strips"))
+        cells();
+      else if (startsWith(keyword, "cell_data") || startsWith(keyword, "point_data"))
+        break;
+      else
+        fail(wordAt_, "unknown keyword '" + shown(word_) + "'");
+    }
+  }
+
+ private:
+  using OnInteger = std::function<void(long long value, std::size_t at)>;
+
+  std::size_t lineAt(std::size_t offset) const {
+    return 1 + std::count(bytes_.begin(), bytes_.begin() + std::min(offset, bytes_.size()), '\n');
+  }
+  [[noreturn]] void fail(std::size_t offset, const std::string& problem) const {
+    throw BadInput(path_, "line " + std::to_string(lineAt(offset)) + ": " + problem);
+  }
+  std::size_t left() const { return bytes_.size() - at_; }
+
+  // The next word as `operator>>` reads it; fails at the end of the file unless `what` is null.
+  std::string_view word(const char* what) {
+    while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+    wordAt_ = at_;
+    while (at_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+    word_ = std::string_view(bytes_).substr(wordAt_, at_ - wordAt_);
+    if (word_.empty() && what) fail(wordAt_, std::string("the file ends before ") + what);
+    // vtkDataReader reads a word into 256 bytes and would take the rest as the next word.
+    if (word_.size() >= 256) fail(wordAt_, "a word of 256 characters or more");
+    return word_;
+  }
+
+  // The current word as a decimal integer in [least, most]; `what` names it in messages.
+  long long parsed(const std::string& what, long long least, long long most, const std::string& in = "") const {
+    const std::string text(word_);
+    errno = 0;
+    char* end = nullptr;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (end != text.c_str() + text.size() || errno == ERANGE || !std::isdigit(static_cast<unsigned char>(text.back())))
+      fail(wordAt_, "bad " + what + " '" + shown(text) + "'" + in);
+    if (value < least || value > most)
+      fail(wordAt_, what + " " + text + in + " is out of range [" + std::to_string(least) + ", " +
+                        std::to_string(most) + "]");
+    return value;
+  }
+
+  long long integer(const char* what, long long least, long long most) {
+    word(what);
+    return parsed(what, least, most);
+  }
+
+  void header() {
+    const std::size_t first = std::min(bytes_.find('\n'), bytes_.size());
+    const std::string line = bytes_.substr(0, std::min<std::size_t>(first, 255));
+    const char* kMagic = "# vtk DataFile Version";
+    if (line.rfind(kMagic, 0) != 0) fail(0, "not a legacy VTK file (expected '# vtk DataFile Version')");
+    int minor = 0;
+    if (std::sscanf(line.c_str() + std::strlen(kMagic), "%d.%d", &major_, &minor) != 2) major_ = 0;
+    const std::size_t title = bytes_.find('\n', first + 1);
+    if (first == bytes_.size() || title == std::string::npos) fail(first, "the file ends in its header");
+    at_ = title + 1;
+    const std::string type = lowerCase(word("ASCII or BINARY"));
+    if (startsWith(type, "ascii"))
+      binary_ = false;
+    else if (startsWith(type, "binary"))
+      binary_ = true;
+    else
+      fail(wordAt_, "expected ASCII or BINARY, found '" + shown(word_) + "'");
+  }
+
+  VtkValueType valueType(const char* what) {
+    VtkValueType type;
+    if (!legacyVtkValueType(lowerCase(word(what)), type))
+      fail(wordAt_, "unsupported data type '" + shown(word_) + "' for " + what);
+    return type;
+  }
+
+  // `count` values of `type`, ASCII words or big-endian binary after the end of the current line (when
+  // `count` is 0, vtkDataReader's arrays skip nothing and its legacy cell lists still skip the line).
+  // Integer values go to `onInteger` if given (integer data only).
+  void values(const VtkValueType& type, long long count, const std::string& what, std::size_t sectionAt,
+              const OnInteger* onInteger, bool skipLineWhenEmpty = false) {
+    if (onInteger && type.isFloat) fail(sectionAt, what + " must be integers");
+    if (binary_) {
+      if (count == 0 && !skipLineWhenEmpty) return;
+      // vtkDataReader skips the rest of the line with getline into 256 bytes, which fails on a longer one.
+      const std::size_t newline = bytes_.find('\n', at_);
+      if (newline == std::string::npos || newline - at_ >= 255)
+        fail(sectionAt, "no end of line before the binary " + what);
+      at_ = newline + 1;
+      if (static_cast<unsigned long long>(count) > left() / type.bytes)
+        fail(sectionAt, std::to_string(count) + " " + what + " take " + std::to_string(count) + " x " +
+                            std::to_string(type.bytes) + " bytes, but only " + std::to_string(left()) + " follow");
+      for (long long i = 0; onInteger && i < count; ++i) {
+        std::uint64_t bits = 0;
+        for (int k = 0; k < type.bytes; ++k)
+          bits = bits << 8 | static_cast<unsigned char>(bytes_[at_ + i * type.bytes + k]);
+        if (type.isSigned) {
+          const int shift = 64 - 8 * type.bytes;
+          (*onInteger)(static_cast<std::int64_t>(bits << shift) >> shift, sectionAt);
+        } else {
+          if (bits > std::uint64_t(std::numeric_limits<long long>::max()))
+            fail(sectionAt, what + " hold a value beyond 2^63");
+          (*onInteger)(static_cast<long long>(bits), sectionAt);
+        }
+      }
+      at_ += std::size_t(count) * type.bytes;
+      return;
+    }
+    // Each ASCII value takes at least one byte.
+    if (static_cast<unsigned long long>(count) > left())
+      fail(sectionAt, std::to_string(count) + " " + what + " are more than the " + std::to_string(left()) +
+                          " bytes left can hold");
+    const double bits = 8.0 * type.bytes;
+    const long long most = type.bytes == 8 ? std::numeric_limits<long long>::max()
+                                           : static_cast<long long>(std::pow(2.0, type.isSigned ? bits - 1 : bits) - 1);
+    const long long least = type.isSigned ? (type.bytes == 8 ? std::numeric_limits<long long>::min() : -most - 1) : 0;
+    for (long long i = 0; i < count; ++i) {
+      if (word(nullptr).empty())
+        fail(wordAt_, "the file ends after " + std::to_string(i) + " of " + std::to_string(count) + " " + what);
+      if (type.isFloat) {
+        const std::string text(word_);
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool decimal = text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+        const double largest = type.bytes == 4 ? double(std::numeric_limits<float>::max())
+                                               : std::numeric_limits<double>::max();
+        if (!decimal || end != text.c_str() + text.size() || !(std::abs(value) <= largest))
+          fail(wordAt_, "bad value '" + shown(text) + "' in " + what);
+      } else {
+        const long long value = parsed("number", least, most, " in " + what);
+        if (onInteger) (*onInteger)(value, wordAt_);
+      }
+    }
+  }
+
+  // An array as vtkDataReader::ReadArray reads it: values, then blank lines and an optional METADATA block
+  // that ends at an empty line.
+  void array(const VtkValueType& type, long long count, const std::string& what, std::size_t sectionAt,
+             const OnInteger* onInteger) {
+    values(type, count, what, sectionAt, onInteger);
+    for (;;) {
+      std::size_t p = at_;
+      while (p < bytes_.size() && (bytes_[p] == ' ' || bytes_[p] == '\r')) ++p;
+      if (p >= bytes_.size() || bytes_[p] != '\n') break;
+      at_ = p + 1;
+    }
+    if (lowerCase(std::string_view(bytes_).substr(at_, 8)) != "metadata") return;
+    for (bool first = true; at_ < bytes_.size(); first = false) {
+      const std::size_t end = std::min(bytes_.find('\n', at_), bytes_.size());
+      std::string_view line = std::string_view(bytes_).substr(at_, end - at_);
+      at_ = std::min(end + 1, bytes_.size());
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      if (!first && line.empty()) break;
+    }
+  }
+
+  void points() {
+    const std::size_t sectionAt = wordAt_;
+    if (points_ >= 0) fail(sectionAt, "a second POINTS section");
+    points_ = integer("number of points", 0, static_cast<long long>(left() / 3));
+    array(valueType("the points"), 3 * points_, "point coordinates", sectionAt, nullptr);
+  }
+
+  // A cell's point index must name one of the points.
+  void pointIndex(long long index, std::size_t at, const std::string& section, long long cell) {
+    if (index < 0 || index >= points_)
+      fail(at, section + " cell " + std::to_string(cell + 1) + " refers to point " + std::to_string(index) + " of " +
+                   std::to_string(points_));
+  }
+
+  void cells() {
+    const std::size_t sectionAt = wordAt_;
+    std::string section(word_);
+    std::transform(section.begin(), section.end(), section.begin(), [](unsigned char c) { return std::toupper(c); });
+    if (points_ < 0) fail(sectionAt, section + " before POINTS");
+    const long long most = std::numeric_limits<long long>::max();
+    if (major_ >= 5) {
+      const long long offsets = integer("number of offsets", std::numeric_limits<long long>::min(), most);
+      const long long connectivity = integer("connectivity size", std::numeric_limits<long long>::min(), most);
+      if (offsets < 1) return;  // vtkDataReader reads no more of the section
+      if (connectivity < 0) fail(sectionAt, section + " declares a negative connectivity size");
+      if (lowerCase(word("OFFSETS")) != "offsets") fail(wordAt_, "expected OFFSETS, found '" + shown(word_) + "'");
+      std::vector<long long> starts;  // of each cell in the connectivity, then its size
+      long long index = 0, previous = 0;
+      const OnInteger offset = [&](long long value, std::size_t at) {
+        if ((index == 0 && value != 0) || value < previous || value > connectivity ||
+            (index == offsets - 1 && value != connectivity))
+          fail(at, section + " offset " + std::to_string(index + 1) + " is " + std::to_string(value) +
+                       "; offsets must rise from 0 to the connectivity size " + std::to_string(connectivity));
+        previous = value;
+        starts.push_back(value);
+        ++index;
+      };
+      array(valueType("the offsets"), offsets, section + " offsets", sectionAt, &offset);
+      if (lowerCase(word("CONNECTIVITY")) != "connectivity")
+        fail(wordAt_, "expected CONNECTIVITY, found '" + shown(word_) + "'");
+      const std::size_t connectivityAt = wordAt_;
+      long long position = 0, cell = 0;
+      const OnInteger point = [&](long long value, std::size_t at) {
+        while (starts[std::size_t(cell) + 1] <= position) ++cell;
+        pointIndex(value, at, section, cell);
+        ++position;
+      };
+      array(valueType("the connectivity"), connectivity, section + " connectivity", connectivityAt, &point);
+      return;
+    }
+    const long long declared = integer("number of cells", 0, most);
+    const long long size = integer("cell list size", 0, static_cast<long long>(left()));
+    long long cells = 0, pointsLeft = -1;  // -1: the next value is a cell's size
+    const OnInteger value = [&](long long v, std::size_t at) {
+      if (pointsLeft > 0) {
+        pointIndex(v, at, section, cells - 1);
+        --pointsLeft;
+        return;
+      }
+      if (v < 0) fail(at, section + " cell " + std::to_string(cells + 1) + " has a negative size");
+      pointsLeft = v;
+      ++cells;
+    };
+    values({4, false, true}, size, section + " values", sectionAt, &value, true);
+    if (pointsLeft > 0)
+      fail(sectionAt, section + " cell " + std::to_string(cells) + " runs past the " + std::to_string(size) +
+                          " values declared");
+    if (cells != declared)
+      fail(sectionAt, section + " declares " + std::to_string(declared) + " cells, but its " + std::to_string(size) +
+                          " values hold " + std::to_string(cells));
+  }
+
+  void field() {
+    word("the FIELD name");
+    const long long arrays = integer("number of FIELD arrays", 0, static_cast<long long>(left()));
+    for (long long i = 0; i < arrays; ++i) {
+      const std::string name(word("a FIELD array"));
+      if (name == "NULL_ARRAY") continue;
+      const std::size_t arrayAt = wordAt_;
+      const long long components = integer("number of components", 0, std::numeric_limits<int>::max());
+      const long long tuples = integer("number of tuples", 0, static_cast<long long>(left()));
+      const VtkValueType type = valueType("a FIELD array");
+      if (components > 0 && tuples > static_cast<long long>(left()) / components)
+        fail(arrayAt, "FIELD array '" + shown(name) + "' declares " + std::to_string(components) + " x " +
+                          std::to_string(tuples) + " values, more than the file can hold");
+      const OnInteger any = [](long long, std::size_t) {};
+      array(type, components * tuples, "values of FIELD array '" + shown(name) + "'", arrayAt,
+            type.isFloat ? nullptr : &any);
+    }
+  }
+
+  const std::string& bytes_;
+  const std::string& path_;
+  std::size_t at_ = 0, wordAt_ = 0;
+  std::string_view word_;
+  bool binary_ = false;
+  int major_ = 0;
+  long long points_ = -1;  // not declared yet
+};
+
+void checkLegacyVtkStructure(const std::string& path) {
+  const std::string bytes = readBinaryFile(path);
+  LegacyVtkWalk(bytes, path).run();
 }
 
 bool isIntegral(int type) {
@@ -725,6 +1109,8 @@ TriMesh readVtkSurface(const std::string& path) {
     mesh = importPolyData(reader->GetOutput(), path);
     tag = commentTag(reader->GetComments());
   } else if (ext == ".vtk") {
+    checkReadable(path);
+    checkLegacyVtkStructure(path);
     vtkNew<vtkPolyDataReader> reader;
     readLegacy(reader.Get(), path);
     mesh = importPolyData(reader->GetOutput(), path);

@@ -7,11 +7,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
+#include <numeric>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace vesalius::io {
 namespace {
@@ -44,6 +51,15 @@ const BadCase kCases[] = {
     {"mesh_end_header_glued.ply", false, "not a PLY file (expected 'ply' ... 'end_header')"},
     {"mesh_nul_in_line.ply", false, "PLY face 1 has too few values on its line"},
     {"mesh_vertex_twice.ply", false, "PLY element 'vertex' is declared twice"},
+    {"mesh_empty_header_line.ply", false, "PLY header line 4 is empty"},
+    {"mesh_element_without_properties.ply", false, "PLY element 'material' has no properties"},
+    {"mesh_vertex_index_in_data.ply", false, "PLY vertex 2 has too few values on its line"},
+    {"mesh_face_extra_list.ply", false, "PLY face property 'other' is a list, which VTK's PLY reader cannot skip"},
+    {"mesh_element_before_vertices.ply", false,
+     "PLY element 'material' comes before the vertices or faces, which VTK's PLY reader does not skip"},
+    {"mesh_property_twice.ply", false, "PLY face property 'vertex_indices' is declared twice"},
+    {"mesh_last_line_unended.ply", false, "PLY face 4 is on a line without a newline at its end"},
+    {"mesh_polygon_bad_number.vtk", false, "line 12: bad number '1?3' in POLYGONS values"},
     {"mesh_missing_node.ele", true, "mesh_missing_node.ele: line 3: node 9 does not exist"},
     {"mesh_no_vertices.mesh", true, "no 'Vertices' section"},
     {"mesh_hexahedra.mesh", true, "section 'Hexahedra' is not supported"},
@@ -85,6 +101,152 @@ TEST(BadMeshFile, UnknownExtensions) {
   EXPECT_EQ(meshFileKind(badFile("mesh_hexahedron.vtk")), MeshKind::kTetrahedral);
   EXPECT_EQ(meshFileKind(badFile("mesh_strips.vtk")), MeshKind::kSurface);
   EXPECT_THROW(meshFileKind(badFile("mesh_image.vtk")), BadInput);
+}
+
+// Legacy VTK polydata of one convex polygon with `corners` corners on a circle, written as vtkDataReader
+// reads it: ASCII or binary (big-endian), with the cell layout of version 4.2 (each cell's size, then its
+// indices) or 5.1 (OFFSETS, CONNECTIVITY). `lastIndex` replaces the polygon's last point index, `badNumber`
+// (ASCII) the first number of its cell list, and a binary file is cut `cut` bytes short.
+struct LegacyPolygon {
+  int corners = 3;
+  bool binary = false, v51 = false;
+  long long lastIndex = -1;
+  std::string badNumber;
+  std::size_t cut = 0;
+};
+
+std::string bigEndian(std::uint64_t value, int bytes) {
+  std::string out;
+  for (int k = bytes - 1; k >= 0; --k) out += static_cast<char>(value >> (8 * k) & 0xff);
+  return out;
+}
+
+std::string floatBigEndian(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, 4);
+  return bigEndian(bits, 4);
+}
+
+std::string legacyPolygon(const LegacyPolygon& p) {
+  const int n = p.corners;
+  std::vector<long long> ids(static_cast<std::size_t>(n));
+  std::iota(ids.begin(), ids.end(), 0LL);
+  if (p.lastIndex >= 0) ids.back() = p.lastIndex;
+  std::ostringstream out;
+  out << "# vtk DataFile Version " << (p.v51 ? "5.1" : "4.2") << "\npolygon\n" << (p.binary ? "BINARY" : "ASCII")
+      << "\nDATASET POLYDATA\nPOINTS " << n << " float\n";
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    const float xyz[3] = {float(10 * std::cos(2 * pi * i / n)), float(10 * std::sin(2 * pi * i / n)), 1.0f};
+    for (float c : xyz) out << (p.binary ? floatBigEndian(c) : std::to_string(c) + " ");
+  }
+  out << "\n";
+  // Integers as the layout writes them: 4 bytes (4.2) or vtktypeint64 (5.1).
+  const auto integers = [&](const std::vector<long long>& values, int bytes, bool firstMayBeBad) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (p.binary)
+        out << bigEndian(static_cast<std::uint64_t>(values[i]), bytes);
+      else if (firstMayBeBad && i == 0 && !p.badNumber.empty())
+        out << p.badNumber << " ";
+      else
+        out << values[i] << " ";
+    }
+    out << "\n";
+  };
+  if (p.v51) {
+    out << "POLYGONS 2 " << n << "\nOFFSETS vtktypeint64\n";
+    integers({0, n}, 8, false);
+    out << "CONNECTIVITY vtktypeint64\n";
+    integers(ids, 8, true);
+  } else {
+    out << "POLYGONS 1 " << n + 1 << "\n";
+    ids.insert(ids.begin(), n);
+    integers(ids, 4, true);
+  }
+  std::string text = out.str();
+  return text.substr(0, text.size() - std::min(p.cut, text.size()));
+}
+
+void writeFile(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Each layout and polygon size: the polygon reads as its fan of triangles; an index beyond the points, a
+// malformed number and a cut binary list are refused with the line of the problem, before VTK reads them.
+TEST(BadMeshFile, LegacyVtkPolygonLists) {
+  const std::string folder = std::string(VESALIUS_TEST_OUTPUT) + "/legacy-vtk";
+  fs::create_directories(folder);
+  for (const bool v51 : {false, true})
+    for (const bool binary : {false, true})
+      for (const int n : {3, 5, 12}) {
+        const std::string name = folder + "/polygon" + std::to_string(n) + (v51 ? "_v51" : "_v42") +
+                                 (binary ? "_binary" : "_ascii");
+        LegacyPolygon p;
+        p.corners = n;
+        p.binary = binary;
+        p.v51 = v51;
+        writeFile(name + ".vtk", legacyPolygon(p));
+        const TriMesh mesh = readTriMesh(name + ".vtk");
+        ASSERT_EQ(mesh.V.rows(), n) << name;
+        ASSERT_EQ(mesh.F.rows(), n - 2) << name;
+        for (int k = 0; k + 2 < n; ++k) {
+          EXPECT_EQ(mesh.F(k, 0), 0) << name;
+          EXPECT_EQ(mesh.F(k, 1), k + 1) << name;
+          EXPECT_EQ(mesh.F(k, 2), k + 2) << name;
+        }
+        std::cout << name << ": " << mesh.F.rows() << " triangles\n";
+
+        // In ASCII the cell list is the last line: line 8 (4.2) or 11 (5.1, after the offsets).
+        const std::string listLine = "line " + std::to_string(v51 ? 11 : 8) + ": ";
+        p.lastIndex = n;
+        writeFile(name + "_index.vtk", legacyPolygon(p));
+        test::expectOneLineBadInput(name + "_index.vtk",
+                                    "POLYGONS cell 1 refers to point " + std::to_string(n) + " of " + std::to_string(n),
+                                    [&] { readTriMesh(name + "_index.vtk"); });
+        p.lastIndex = -1;
+        if (binary) {
+          p.cut = 3;
+          writeFile(name + "_cut.vtk", legacyPolygon(p));
+          test::expectOneLineBadInput(name + "_cut.vtk", v51 ? "POLYGONS connectivity take" : "POLYGONS values take",
+                                      [&] { readTriMesh(name + "_cut.vtk"); });
+          test::expectOneLineBadInput(name + "_cut.vtk", "but only", [&] { readTriMesh(name + "_cut.vtk"); });
+        } else if (v51) {
+          test::expectOneLineBadInput(name + "_index.vtk", listLine, [&] { readTriMesh(name + "_index.vtk"); });
+          p.badNumber = "0x";
+          writeFile(name + "_number.vtk", legacyPolygon(p));
+          test::expectOneLineBadInput(name + "_number.vtk", listLine + "bad number '0x' in POLYGONS connectivity",
+                                      [&] { readTriMesh(name + "_number.vtk"); });
+        } else {
+          test::expectOneLineBadInput(name + "_index.vtk", listLine, [&] { readTriMesh(name + "_index.vtk"); });
+          std::string text = legacyPolygon(p);
+          const std::size_t list = text.rfind('\n', text.size() - 2) + 1;
+          text.replace(list, std::to_string(n).size(), "3\xe6");
+          writeFile(name + "_number.vtk", text);
+          test::expectOneLineBadInput(name + "_number.vtk", listLine + "bad number '3?' in POLYGONS values",
+                                      [&] { readTriMesh(name + "_number.vtk"); });
+        }
+      }
+}
+
+// A PLY polygon whose last line lacks its newline is refused; with it, it reads, at each size.
+TEST(BadMeshFile, PlyLastLineNeedsItsNewline) {
+  const std::string folder = std::string(VESALIUS_TEST_OUTPUT) + "/ply-newline";
+  fs::create_directories(folder);
+  for (const int n : {3, 5, 12}) {
+    std::ostringstream text;
+    text << "ply\nformat ascii 1.0\nelement vertex " << n
+         << "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+            "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < n; ++i) text << std::cos(6.283 * i / n) << " " << std::sin(6.283 * i / n) << " 0\n";
+    text << n;
+    for (int i = 0; i < n; ++i) text << " " << i;
+    const std::string path = folder + "/polygon" + std::to_string(n) + ".ply";
+    writeFile(path, text.str());
+    test::expectOneLineBadInput(path, "PLY face 1 is on a line without a newline at its end",
+                                [&] { readTriMesh(path); });
+    writeFile(path, text.str() + "\n");
+    EXPECT_EQ(readTriMesh(path).F.rows(), n - 2) << path;
+  }
 }
 
 std::string slurp(const std::string& path) {
