@@ -102,7 +102,7 @@ StoredType storedTypeOf(itk::IOComponentEnum component, const std::string& path)
 struct NiftiLayout {
   int axes = 0;                    // dim[0], at most 3 counted
   std::array<double, 3> pixdim{};  // pixdim[1..axes]: voxel spacing
-  std::uint64_t dataEnd = 0;       // vox_offset + voxel bytes; 0 when voxels live in a separate .img
+  std::uint64_t dataEnd = 0;       // vox_offset + voxel bytes; 0 when the voxel size is unknown
   std::string nonFinite;           // the first transform field in use that is NaN or infinite, or empty
   int datatype = 0;                // NIFTI_TYPE_*: 16 float32, 64 float64
   std::uint64_t voxOffset = 0;
@@ -128,10 +128,24 @@ std::uint64_t byteCount(double bytes) {
   return bytes < kTwoTo64 ? std::uint64_t(bytes) : std::numeric_limits<std::uint64_t>::max();
 }
 
+// Bits per voxel of a NIfTI datatype (nifti1.h's NIFTI_TYPE_*), as nifticlib counts them.
+std::optional<double> niftiDatatypeBits(int datatype) {
+  switch (datatype) {
+    case 2: case 256: return 8;                        // uint8, int8
+    case 4: case 512: return 16;                       // int16, uint16
+    case 8: case 16: case 768: case 2304: return 32;   // int32, float32, uint32, rgba32
+    case 128: return 24;                               // rgb24
+    case 32: case 64: case 1024: case 1280: return 64;  // complex64, float64, int64, uint64
+    case 1536: case 1792: return 128;                  // float128, complex128
+    case 2048: return 256;                             // complex256
+    default: return std::nullopt;
+  }
+}
+
 // Field offsets of the two header versions; the NIfTI-2 fields are 64-bit.
 template <class DimType, class PixdimType, class OffsetType>
 NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t dimAt, std::size_t bitpixAt,
-                        std::size_t pixdimAt, std::size_t offsetAt, bool singleFile) {
+                        std::size_t pixdimAt, std::size_t offsetAt) {
   NiftiLayout layout;
   const auto dim = [&](int n) {
     return double(headerField<DimType>(header, dimAt + n * sizeof(DimType), swapped));
@@ -146,10 +160,13 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
   for (int n = 0; n < layout.axes; ++n)
     layout.pixdim[n] =
         double(headerField<PixdimType>(header, pixdimAt + (n + 1) * sizeof(PixdimType), swapped));
-  const double bitpix = headerField<std::int16_t>(header, bitpixAt, swapped);
-  const double offset = double(headerField<OffsetType>(header, offsetAt, swapped));
-  if (singleFile && bitpix > 0 && offset >= 0) layout.dataEnd = byteCount(offset + voxels * bitpix / 8);
   layout.datatype = headerField<std::int16_t>(header, bitpixAt - 2, swapped);
+  // nifticlib sizes the voxels by datatype, not bitpix (which a header may leave 0 or get wrong); bitpix
+  // only for a datatype it does not know.
+  const double bitpix = niftiDatatypeBits(layout.datatype).value_or(headerField<std::int16_t>(header, bitpixAt, swapped));
+  const double offset = double(headerField<OffsetType>(header, offsetAt, swapped));
+  // A negative vox_offset is read from the header's end: counted from 0, the data's end is still a bound.
+  if (bitpix > 0) layout.dataEnd = byteCount(std::max(offset, 0.0) + voxels * bitpix / 8);
   layout.voxOffset = offset >= 0 ? byteCount(offset) : 0;
   for (int n = 0; n < layout.axes; ++n) layout.size[n] = std::int64_t(std::max(dim(n + 1), 1.0));
   layout.swapped = swapped;
@@ -193,15 +210,15 @@ std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int len
   };
   if (size == 348) orderOfDim0(40, std::int16_t{});
   if (size == 540) orderOfDim0(16, std::int64_t{});
+  // Only .nii and .nii.gz files are checked, and nifticlib reads their voxels from the same file whatever
+  // the magic says (one without "n+1" as ANALYZE 7.5): the data's end is always a bound.
   if (size == 348) {
-    NiftiLayout layout = niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108,
-                                                                 std::memcmp(header + 344, "n+1", 4) == 0);
+    NiftiLayout layout = niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108);
     layout.nonFinite = nonFiniteTransformField<std::int16_t, float>(header, swapped, 252);
     return layout;
   }
   if (size == 540 && length >= 540) {
-    NiftiLayout layout = niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168,
-                                                                         std::memcmp(header + 4, "n+2", 4) == 0);
+    NiftiLayout layout = niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168);
     layout.nonFinite = nonFiniteTransformField<std::int32_t, double>(header, swapped, 344);
     return layout;
   }
@@ -472,8 +489,12 @@ std::optional<StoredData> metaImageStoredData(const std::string& path) {
   std::uint64_t headerBytes = 0;
   std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   const std::string& dataFile = fields["ElementDataFile"];
-  if (dataFile.empty() || dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos)
-    return std::nullopt;
+  if (dataFile.empty()) return std::nullopt;
+  // MetaIO allocates the whole image before it reads the slices of a list or a numbered pattern, and
+  // divides by zero on some patterns: one data file per image only.
+  if (dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos)
+    throw BadInput(path, "MetaImage data split over several files (ElementDataFile " + dataFile.substr(0, 40) +
+                             ") is not supported; save the image with its data in one file");
   StoredData stored;
   stored.expansion = fields["CompressedData"] == "True" ? 1032 : 1;
   if (dataFile != "LOCAL") {

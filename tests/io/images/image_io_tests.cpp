@@ -293,6 +293,11 @@ TEST(ImageIo, BrokenInputsAreOneLineBadInput) {
   expectOneLineBadInput(kBad + "/dicom_two_series", "2 DICOM series");
   expectOneLineBadInput(kBad + "/scan_missing.nii.gz", "no such file");
   expectOneLineBadInput(kBad + "/scan_unknown_extension.xyz", "unknown scan format '.xyz'");
+  // Found by fuzz_nifti and fuzz_mha: a 390-byte .nii without the "n+1" magic whose header declares 3 GB
+  // of int64 voxels (nifticlib reads it from the same file all the same), and a MetaImage whose data file
+  // is a numbered pattern over 16 GB (MetaIO allocates it all, then divides by zero).
+  expectOneLineBadInput(kBad + "/scan_nifti_no_magic_3gb.nii", "file is truncated: 390 of 3221225472 bytes");
+  expectOneLineBadInput(kBad + "/scan_mha_pattern_16gb.mha", "MetaImage data split over several files");
 }
 
 void writeBytes(const fs::path& path, const std::string& bytes) {
