@@ -489,7 +489,7 @@ std::optional<StoredData> metaImageStoredData(const std::string& path) {
   std::uint64_t headerBytes = 0;
   std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   const std::string& dataFile = fields["ElementDataFile"];
-  if (dataFile.empty()) return std::nullopt;
+  if (dataFile.empty()) throw BadInput(path, "MetaImage header names no data file (ElementDataFile is empty)");
   // MetaIO allocates the whole image before it reads the slices of a list or a numbered pattern, and
   // divides by zero on some patterns: one data file per image only.
   if (dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos)

@@ -295,9 +295,10 @@ TEST(ImageIo, BrokenInputsAreOneLineBadInput) {
   expectOneLineBadInput(kBad + "/scan_unknown_extension.xyz", "unknown scan format '.xyz'");
   // Found by fuzz_nifti and fuzz_mha: a 390-byte .nii without the "n+1" magic whose header declares 3 GB
   // of int64 voxels (nifticlib reads it from the same file all the same), and a MetaImage whose data file
-  // is a numbered pattern over 16 GB (MetaIO allocates it all, then divides by zero).
+  // is a numbered pattern over 16 GB (MetaIO allocates it all, then divides by zero), or empty.
   expectOneLineBadInput(kBad + "/scan_nifti_no_magic_3gb.nii", "file is truncated: 390 of 3221225472 bytes");
   expectOneLineBadInput(kBad + "/scan_mha_pattern_16gb.mha", "MetaImage data split over several files");
+  expectOneLineBadInput(kBad + "/scan_mha_empty_data_file.mha", "ElementDataFile is empty");
 }
 
 void writeBytes(const fs::path& path, const std::string& bytes) {
