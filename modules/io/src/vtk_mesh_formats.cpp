@@ -165,9 +165,13 @@ void checkXmlDeclaredCounts(const std::string& path) {
     if (quote == std::string::npos || equals == std::string::npos || equals > quote) continue;
     const std::string name = text.substr(at, equals - at);
     const double count = std::strtod(text.c_str() + quote + 1, nullptr);
+    const std::string value = text.substr(quote + 1, text.find_first_of("\"'", quote + 1) - quote - 1);
     if (name != "NumberOfComponents" && count > most)
-      throw BadInput(path, name + "=\"" + text.substr(quote + 1, text.find_first_of("\"'", quote + 1) - quote - 1) +
-                               "\" is more than a file of " + std::to_string(text.size()) + " bytes can hold");
+      throw BadInput(path, name + "=\"" + value + "\" is more than a file of " + std::to_string(text.size()) +
+                               " bytes can hold");
+    // VTK takes a component count beyond int as a huge one and loops over it for minutes.
+    if (name == "NumberOfComponents" && !(count >= 1 && count <= 65535))
+      throw BadInput(path, "NumberOfComponents=\"" + value + "\" is not a component count (1 to 65535)");
   }
 }
 

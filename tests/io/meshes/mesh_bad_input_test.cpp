@@ -44,6 +44,7 @@ const BadCase kCases[] = {
     {"mesh_short_point_data.vtk", false, "Possible mismatch of datasize with declaration"},
     {"mesh_image.vtk", false, "holds VTK structured_points"},
     {"mesh_truncated.vtp", false, "Error parsing XML in stream at line 15"},
+    {"mesh_huge_components.vtp", false, "NumberOfComponents=\"11111111111111111113\" is not a component count"},
     {"mesh_truncated.ply", false, "PLY data ends early, in vertex 4 of 4"},
     {"mesh_short_row.ply", false, "PLY vertex 4 has too few values on its line"},
     {"mesh_no_y.ply", false, "PLY vertices have no 'y' property"},
