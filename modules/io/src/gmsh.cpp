@@ -470,7 +470,7 @@ void appendEntityLine(std::string& out, const Entity& entity, const MatrixX3d& V
       min = min.cwiseMin(V.row(elements(e, c)).transpose());
       max = max.cwiseMax(V.row(elements(e, c)).transpose());
     }
-  if (entity.elements.empty()) {  // the placeholder volume: the bounds of all nodes
+  if (entity.elements.empty()) {  // the empty volume that holds the nodes of a mesh without elements: their bounds
     min = V.colwise().minCoeff().transpose();
     max = V.colwise().maxCoeff().transpose();
   }
@@ -502,13 +502,13 @@ std::string formatGmsh41(const TetMesh& mesh) {
   const std::vector<Entity> surfaces = entitiesOf(mesh.F, mesh.faceAttributes);
   const std::vector<Entity> volumes = entitiesOf(mesh.T, mesh.tetAttributes);
   // Gmsh needs every node on an entity; with no elements at all, one empty volume holds them.
-  const bool placeholder = surfaces.empty() && volumes.empty() && mesh.V.rows() > 0;
+  const bool nodesOnly = surfaces.empty() && volumes.empty() && mesh.V.rows() > 0;
   std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n";
   appendLine(out, {0, 0, static_cast<long long>(surfaces.size()),
-                   static_cast<long long>(volumes.size()) + (placeholder ? 1 : 0)});
+                   static_cast<long long>(volumes.size()) + (nodesOnly ? 1 : 0)});
   for (const Entity& entity : surfaces) appendEntityLine(out, entity, mesh.V, mesh.F);
   for (const Entity& entity : volumes) appendEntityLine(out, entity, mesh.V, mesh.T);
-  if (placeholder) {
+  if (nodesOnly) {
     Entity empty;
     empty.tag = 1;
     appendEntityLine(out, empty, mesh.V, mesh.T);
@@ -519,8 +519,8 @@ std::string formatGmsh41(const TetMesh& mesh) {
     out += "0 0 0 0\n";
   } else {
     appendLine(out, {1, n, 1, n});
-    const bool onVolume = !volumes.empty() || placeholder;
-    appendLine(out, {onVolume ? 3 : 2, volumes.empty() ? (placeholder ? 1 : surfaces[0].tag) : volumes[0].tag, 0, n});
+    const bool onVolume = !volumes.empty() || nodesOnly;
+    appendLine(out, {onVolume ? 3 : 2, volumes.empty() ? (nodesOnly ? 1 : surfaces[0].tag) : volumes[0].tag, 0, n});
     for (long long i = 1; i <= n; ++i) appendLine(out, {i});
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
       for (int k = 0; k < 3; ++k) {
