@@ -6,6 +6,7 @@
 #include "vesalius/segmentation/mri_tissues.h"
 #include "vesalius/viz/slice_overlay.h"
 
+#include <filesystem>
 #include <iostream>
 
 namespace vesalius::cli {
@@ -37,6 +38,11 @@ LabelMap classify(const Image& scan, const SegmentOptions& o, Progress& progress
 }
 
 void runSegment(const SegmentOptions& o) {
+  // The picture's default name comes from --out, so no option check has seen it: checked before the work,
+  // not after the label map is written.
+  const std::string png = o.png.empty() ? defaultPngPath(o.out) : o.png;
+  checkNotAnInput(png);
+  if (!o.common.force && std::filesystem::exists(png)) throw UsageError(png + ": exists; pass --force to replace it");
   io::Report report("segment");
   report.input("scan", o.scan);
   report.parameter("modality", o.modality);
@@ -54,7 +60,6 @@ void runSegment(const SegmentOptions& o) {
     labels = classify(scan, o, progress);
   }
   io::writeLabelMap(o.out, labels, o.common.writeOptions());
-  const std::string png = o.png.empty() ? defaultPngPath(o.out) : o.png;
   viz::OverlayOptions overlay;
   overlay.write = o.common.writeOptions();
   viz::writeSliceOverlayPng(scan, labels, png, overlay);

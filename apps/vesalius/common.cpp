@@ -76,7 +76,10 @@ void checkInputsAndOutputs(const CLI::App& command) {
       throw UsageError(output.path + ": " + output.option + " names a path too long for the file system");
     std::error_code ec;
     const fs::path folder = fs::path(output.path).has_parent_path() ? fs::path(output.path).parent_path() : fs::path(".");
-    if (fs::is_directory(folder, ec) && ::access(folder.c_str(), W_OK) != 0)
+    if (!fs::is_directory(folder, ec))
+      throw UsageError(output.path + ": " + output.option + " is in the folder " + folder.string() +
+                       ", which does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
       throw UsageError(output.path + ": " + output.option + " is in the folder " + folder.string() +
                        ", which is not writable");
   }

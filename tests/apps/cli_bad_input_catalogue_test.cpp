@@ -64,7 +64,11 @@ const std::vector<Case>& catalogue() {
       {"markers_convert_out_is_input", {"markers", "convert", "{D}/markers.mrk.json", "--out", "{D}/markers.mrk.json", "--force"}, 2, "{D}/markers.mrk.json: --out names the input in {D}/markers.mrk.json", "{D}/markers.mrk.json"},
       {"report_is_input", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/crop.nii.gz", "--report", "{D}/labels.nii.gz", "--force"}, 2, "{D}/labels.nii.gz: --report names the input --labels {D}/labels.nii.gz", "{D}/labels.nii.gz"},
       {"report_is_output", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/crop.nii.gz", "--report", "{D}/crop.nii.gz"}, 2, "{D}/crop.nii.gz: given to both --out and --report", "{D}/crop.nii.gz"},
+      {"markers_suggest_out_is_input", {"markers", "suggest", "--scan", "{D}/mr.nii", "--template", "{D}/octahedron.vtk", "--markers", "{D}/markers.mrk.json", "--out", "{D}/markers.mrk.json", "--force"}, 2, "{D}/markers.mrk.json: --out names the input --markers {D}/markers.mrk.json", "{D}/markers.mrk.json"},
       {"pose_out_is_anatomy", {"pose", "--anatomy", "{D}/reference", "--motion", "{D}/markers.mrk.json", "--out", "{D}/reference", "--force"}, 2, "{D}/reference: --out names the input --anatomy {D}/reference", "{D}/reference"},
+      // Item 6: outputs checked before the work, so that none is written when a later one would fail.
+      {"report_in_missing_folder", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/crop.nii.gz", "--report", "{D}/missing/report.json"}, 2, "{D}/missing/report.json: --report is in the folder {D}/missing, which does not exist", "{D}/missing/report.json"},
+      {"segment_png_exists", {"segment", "--scan", "{D}/mr.nii", "--modality", "mri", "--out", "{D}/seg.nii.gz"}, 2, "{D}/seg.png: exists; pass --force to replace it", "{D}/seg.png"},
       // Item 7: requests that would run without end.
       {"tetmesh_quality_below_1_1", {"tetmesh", "--surface", "{D}/octahedron.vtk", "--out", "{D}/tets.vtu", "--quality", "0.5"}, 2, "tetmesh: --quality must be 0 (no refinement) or at least 1.1", "0.5"},
       {"tetmesh_max_volume_1e-12", {"tetmesh", "--surface", "{D}/octahedron.vtk", "--out", "{D}/tets.vtu", "--max-volume", "1e-12"}, 2, "{D}/octahedron.vtk: a volume bound of 1e-12 mm^3 needs at least", "{D}/octahedron.vtk"},
@@ -209,6 +213,7 @@ void makeFiles(const std::string& d) {
   writeBytes(d + "/constant.nii", nifti(std::vector<float>(512, 7.0f)));
   writeBytes(d + "/air.nii", nifti(std::vector<float>(512, -1000.0f)));
   writeBytes(d + "/mr.nii", nifti(ramp()));
+  writeBytes(d + "/seg.png", "a picture segment must not replace");
   fs::create_symlink("mr.nii", d + "/mr_symlink.nii");
   fs::create_hard_link(d + "/mr.nii", d + "/mr_hardlink.nii");
 

@@ -8,7 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -157,6 +160,34 @@ TEST(CliOutputFolders, AnOutputFolderThatIsOrHoldsAnInputIsRefused) {
     const std::string out = args[args.size() - 2];
     expectFailsLeavingAllAsItWas(run, 2, dir, out, "input");
   }
+}
+
+// An output, or a report, in a folder the user cannot write to is refused before any work, in one line
+// naming it (not its temporary). The folder is read-only by its mode, or for root (whom modes do not stop)
+// a read-only tmpfs the test mounts; without the right to mount one the test is skipped as root.
+TEST(CliOutputFolders, AnOutputInAReadOnlyFolderIsRefusedBeforeTheWork) {
+  const std::string dir = freshDir("read-only"), readOnly = dir + "/read-only";
+  writeLabels(dir + "/labels.nii.gz", 14, 2);
+  fs::create_directories(readOnly);
+  bool mounted = false;
+  if (::geteuid() == 0) {
+    mounted = std::system(("mount -t tmpfs -o ro,size=1m tmpfs '" + readOnly + "' 2>/dev/null").c_str()) == 0;
+    if (!mounted) GTEST_SKIP() << "as root, cannot mount a read-only tmpfs at " << readOnly;
+  } else {
+    fs::permissions(readOnly, fs::perms::owner_read | fs::perms::owner_exec);
+  }
+  const std::vector<std::vector<std::string>> cases{
+      {"labels", "crop", "--labels", dir + "/labels.nii.gz", "--out", readOnly + "/crop.nii.gz"},
+      {"labels", "crop", "--labels", dir + "/labels.nii.gz", "--out", dir + "/crop.nii.gz", "--report",
+       readOnly + "/report.json"}};
+  for (const std::vector<std::string>& args : cases) {
+    const std::string output = args.back(), option = args[args.size() - 2];
+    SCOPED_TRACE(option + " " + output);
+    expectFailsLeavingAllAsItWas(args, 2, dir, output + ": " + option + " is in the folder " + readOnly,
+                                 "which is not writable");
+  }
+  if (mounted) std::system(("umount '" + readOnly + "'").c_str());
+  else fs::permissions(readOnly, fs::perms::owner_all);
 }
 
 }  // namespace

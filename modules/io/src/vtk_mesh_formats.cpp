@@ -485,11 +485,14 @@ void checkPlyStructure(const std::string& path) {
 // vtkPolyDataReader closes its file when a number in a legacy cell list is malformed and then reads on from
 // the closed stream (a segfault), dereferences a null FIELD when one of its arrays fails, allocates what
 // POINTS, FIELD and the cell headers declare before reading anything, and builds cells from the sizes in a
-// list without checking them against the list's length or the points. So the geometry of a legacy POLYDATA
-// file (header, FIELD, POINTS, VERTICES, LINES, POLYGONS, TRIANGLE_STRIPS, in the cell layout of files
-// before version 5 and in the OFFSETS/CONNECTIVITY one of 5.x) is walked first, word by word as
-// vtkDataReader reads it. What follows the first POINT_DATA or CELL_DATA is left to VTK, which checks those
-// counts against the points and cells it has read.
+// list without checking them against the list's length or the points. vtkUnstructuredGridReader reads its
+// CELLS the same way, and then takes as many CELL_TYPES as there are cells, however many the file holds (a
+// read beyond its array), each truncated to a byte (266 reads as a tetrahedron). So the geometry of a
+// legacy POLYDATA or UNSTRUCTURED_GRID file (header, FIELD, POINTS, the cell lists VERTICES, LINES,
+// POLYGONS, TRIANGLE_STRIPS or CELLS, in the layout of files before version 5 and in the
+// OFFSETS/CONNECTIVITY one of 5.x, and CELL_TYPES) is walked first, word by word as vtkDataReader reads
+// it. What follows the first POINT_DATA or CELL_DATA is left to VTK, which checks those counts against the
+// points and cells it has read.
 struct VtkValueType {
   int bytes = 0;
   bool isFloat = false, isSigned = false;
@@ -525,16 +528,32 @@ std::string shown(std::string_view word) {
   return word.size() > 40 ? text + "..." : text;
 }
 
+// "a hexahedron (VTK cell type 12)". VTK's table of names is indexed by the type unchecked, so a type
+// outside it is not looked up.
+std::string cellTypeDescription(long long type) {
+  const char* className =
+      type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? vtkCellTypes::GetClassNameFromTypeId(int(type)) : nullptr;
+  if (!className || std::strncmp(className, "vtk", 3) != 0)
+    return "of VTK cell type " + std::to_string(type) + ", which VTK does not know";
+  std::string name = className + 3;
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  return "a " + name + " (VTK cell type " + std::to_string(type) + ")";
+}
+
 class LegacyVtkWalk {
  public:
-  LegacyVtkWalk(const std::string& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+  // `unstructuredGrid`: the file must hold DATASET UNSTRUCTURED_GRID of tetrahedra, else DATASET POLYDATA.
+  LegacyVtkWalk(const std::string& bytes, const std::string& path, bool unstructuredGrid)
+      : bytes_(bytes), path_(path), grid_(unstructuredGrid) {}
 
   void run() {
     header();
+    const std::string dataset = grid_ ? "UNSTRUCTURED_GRID" : "POLYDATA";
     if (!startsWith(lowerCase(word("DATASET")), "dataset"))
-      fail(wordAt_, "expected DATASET POLYDATA, found '" + shown(word_) + "'");
-    if (!startsWith(lowerCase(word("the dataset type")), "polydata"))
-      fail(wordAt_, "expected DATASET POLYDATA, found DATASET " + shown(word_));
+      fail(wordAt_, "expected DATASET " + dataset + ", found '" + shown(word_) + "'");
+    if (!startsWith(lowerCase(word("the dataset type")), lowerCase(dataset).c_str()))
+      fail(wordAt_, "expected DATASET " + dataset + ", found DATASET " + shown(word_));
+    // The keywords in the order the readers try them (a word is taken by the first it starts with).
     while (at_ < bytes_.size()) {
       const std::string keyword = lowerCase(word(nullptr));
       if (keyword.empty()) break;
@@ -542,14 +561,19 @@ class LegacyVtkWalk {
         field();
       else if (startsWith(keyword, "points"))
         points();
-      else if (startsWith(keyword, "vertices") || startsWith(keyword, "lines") || startsWith(keyword, "polygons") ||
-               startsWith(keyword, "triangle_strips"))
-        cells();
+      else if (!grid_ && (startsWith(keyword, "vertices") || startsWith(keyword, "lines") ||
+                          startsWith(keyword, "polygons") || startsWith(keyword, "triangle_strips")))
+        cells(nullptr);
+      else if (grid_ && startsWith(keyword, "cells"))
+        gridCells();
+      else if (grid_ && startsWith(keyword, "cell_types"))
+        cellTypes();
       else if (startsWith(keyword, "cell_data") || startsWith(keyword, "point_data"))
         break;
       else
         fail(wordAt_, "unknown keyword '" + shown(word_) + "'");
     }
+    if (grid_) checkTetrahedra();
   }
 
  private:
@@ -714,7 +738,8 @@ class LegacyVtkWalk {
                    std::to_string(points_));
   }
 
-  void cells() {
+  // A cell list; the size of each cell goes to `sizes` if given.
+  void cells(std::vector<long long>* sizes) {
     const std::size_t sectionAt = wordAt_;
     std::string section(word_);
     std::transform(section.begin(), section.end(), section.begin(), [](unsigned char c) { return std::toupper(c); });
@@ -733,6 +758,7 @@ class LegacyVtkWalk {
             (index == offsets - 1 && value != connectivity))
           fail(at, section + " offset " + std::to_string(index + 1) + " is " + std::to_string(value) +
                        "; offsets must rise from 0 to the connectivity size " + std::to_string(connectivity));
+        if (sizes && index > 0) sizes->push_back(value - previous);
         previous = value;
         starts.push_back(value);
         ++index;
@@ -760,6 +786,7 @@ class LegacyVtkWalk {
         return;
       }
       if (v < 0) fail(at, section + " cell " + std::to_string(cells + 1) + " has a negative size");
+      if (sizes) sizes->push_back(v);
       pointsLeft = v;
       ++cells;
     };
@@ -770,6 +797,42 @@ class LegacyVtkWalk {
     if (cells != declared)
       fail(sectionAt, section + " declares " + std::to_string(declared) + " cells, but its " + std::to_string(size) +
                           " values hold " + std::to_string(cells));
+  }
+
+  void gridCells() {
+    if (cellsAt_ != std::string::npos) fail(wordAt_, "a second CELLS section");
+    cellsAt_ = wordAt_;
+    cells(&cellSizes_);
+  }
+
+  // As many 4-byte types as the count says; only tetrahedra are read.
+  void cellTypes() {
+    const std::size_t sectionAt = wordAt_;
+    if (typesAt_ != std::string::npos) fail(sectionAt, "a second CELL_TYPES section");
+    typesAt_ = sectionAt;
+    types_ = integer("number of cell types", 0, std::numeric_limits<long long>::max());
+    long long cell = 0;
+    const OnInteger type = [&](long long value, std::size_t at) {
+      ++cell;
+      if (value != VTK_TETRA)
+        fail(at, "CELL_TYPES cell " + std::to_string(cell) + " is " + cellTypeDescription(value) +
+                     "; only tetrahedra are supported");
+    };
+    values({4, false, true}, types_, "cell types", sectionAt, &type, true);
+  }
+
+  // CELLS and CELL_TYPES both, one type per cell, four points per tetrahedron.
+  void checkTetrahedra() const {
+    if (cellsAt_ == std::string::npos && typesAt_ == std::string::npos) return;
+    if (typesAt_ == std::string::npos) fail(cellsAt_, "CELLS without CELL_TYPES");
+    if (cellsAt_ == std::string::npos) fail(typesAt_, "CELL_TYPES without CELLS");
+    const long long cells = static_cast<long long>(cellSizes_.size());
+    if (types_ != cells)
+      fail(typesAt_, "CELL_TYPES declares " + std::to_string(types_) + " cells, CELLS " + std::to_string(cells));
+    for (std::size_t c = 0; c < cellSizes_.size(); ++c)
+      if (cellSizes_[c] != 4)
+        fail(cellsAt_, "CELLS cell " + std::to_string(c + 1) + " has " + std::to_string(cellSizes_[c]) +
+                           " points; a tetrahedron has 4");
   }
 
   void field() {
@@ -796,13 +859,18 @@ class LegacyVtkWalk {
   std::size_t at_ = 0, wordAt_ = 0;
   std::string_view word_;
   bool binary_ = false;
+  const bool grid_;
   int major_ = 0;
   long long points_ = -1;  // not declared yet
+  // Unstructured grids: where CELLS and CELL_TYPES begin (npos: not met), each cell's size, the type count.
+  std::size_t cellsAt_ = std::string::npos, typesAt_ = std::string::npos;
+  std::vector<long long> cellSizes_;
+  long long types_ = 0;
 };
 
-void checkLegacyVtkStructure(const std::string& path) {
+void checkLegacyVtkStructure(const std::string& path, bool unstructuredGrid) {
   const std::string bytes = readBinaryFile(path);
-  LegacyVtkWalk(bytes, path).run();
+  LegacyVtkWalk(bytes, path, unstructuredGrid).run();
 }
 
 bool isIntegral(int type) {
@@ -1016,15 +1084,6 @@ vtkSmartPointer<vtkPolyData> exportPolyData(const TriMesh& mesh) {
   return data;
 }
 
-// "vtkHexahedron" -> "hexahedron".
-std::string cellTypeName(int type) {
-  const char* className = vtkCellTypes::GetClassNameFromTypeId(type);
-  std::string name = className ? className : "unknown cell";
-  if (name.rfind("vtk", 0) == 0) name.erase(0, 3);
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-  return name;
-}
-
 TetMesh importUnstructuredGrid(vtkUnstructuredGrid* data, const std::string& path) {
   TetMesh mesh;
   mesh.V = importPoints(data);
@@ -1032,8 +1091,8 @@ TetMesh importUnstructuredGrid(vtkUnstructuredGrid* data, const std::string& pat
   for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
     const int type = data->GetCellType(c);
     if (type != VTK_TETRA)
-      throw BadInput(path, "cell " + std::to_string(c) + " is a " + cellTypeName(type) + " (VTK cell type " +
-                               std::to_string(type) + "); only tetrahedra are supported");
+      throw BadInput(path, "cell " + std::to_string(c) + " is " + cellTypeDescription(type) +
+                               "; only tetrahedra are supported");
     vtkIdType size;
     const vtkIdType* ids;
     data->GetCellPoints(c, size, ids);
@@ -1114,7 +1173,7 @@ TriMesh readVtkSurface(const std::string& path) {
     tag = commentTag(reader->GetComments());
   } else if (ext == ".vtk") {
     checkReadable(path);
-    checkLegacyVtkStructure(path);
+    checkLegacyVtkStructure(path, false);
     vtkNew<vtkPolyDataReader> reader;
     readLegacy(reader.Get(), path);
     mesh = importPolyData(reader->GetOutput(), path);
@@ -1142,6 +1201,8 @@ TetMesh readVtkTetMesh(const std::string& path) {
     mesh = importUnstructuredGrid(reader->GetOutput(), path);
     tag = fieldDataTag(reader->GetOutput());
   } else if (ext == ".vtk") {
+    checkReadable(path);
+    checkLegacyVtkStructure(path, true);
     vtkNew<vtkUnstructuredGridReader> reader;
     readLegacy(reader.Get(), path);
     mesh = importUnstructuredGrid(reader->GetOutput(), path);

@@ -68,7 +68,14 @@ const BadCase kCases[] = {
     {"mesh_gmsh41_truncated.msh", true, "mesh_gmsh41_truncated.msh: line 100: file ends in node coordinates"},
     {"mesh_gmsh41_binary.msh", true, "line 2: binary Gmsh files are not supported (save as ASCII"},
     {"mesh_hexahedron.vtu", true, "cell 0 is a hexahedron (VTK cell type 12); only tetrahedra are supported"},
-    {"mesh_hexahedron.vtk", true, "cell 0 is a hexahedron"},
+    {"mesh_hexahedron.vtk", true, "line 10: CELL_TYPES cell 1 is a hexahedron (VTK cell type 12); only tetrahedra"},
+    {"mesh_tets_cells_beyond_file.vtk", true, "line 7: cell list size 1000000000 is out of range"},
+    {"mesh_tets_cell_runs_past.vtk", true, "line 7: CELLS cell 2 runs past the 10 values declared"},
+    {"mesh_tets_index.vtk", true, "line 9: CELLS cell 2 refers to point 100000000 of 5"},
+    {"mesh_tets_types_short.vtk", true, "line 10: CELL_TYPES declares 1 cells, CELLS 2"},
+    {"mesh_tets_type_266.vtk", true, "line 12: CELL_TYPES cell 2 is of VTK cell type 266, which VTK does not know"},
+    {"mesh_tets_polyhedron.vtk", true, "line 12: CELL_TYPES cell 2 is a polyhedron (VTK cell type 42)"},
+    {"mesh_tets_triangle_cell.vtk", true, "line 7: CELLS cell 2 has 3 points; a tetrahedron has 4"},
     {"mesh_strips.vtk", true, "holds VTK polydata, not an unstructured grid"},
     {"no_such_mesh.obj", false, "cannot open"},
     {"no_such_mesh.vtu", true, "cannot open"},
@@ -227,6 +234,93 @@ TEST(BadMeshFile, LegacyVtkPolygonLists) {
                                       [&] { readTriMesh(name + "_number.vtk"); });
         }
       }
+}
+
+// Legacy VTK unstructured grid of two tetrahedra sharing a face, written as vtkDataReader reads it: ASCII or
+// binary (big-endian), cells in the layout of version 4.2 or 5.1 (OFFSETS, CONNECTIVITY), then CELL_TYPES.
+// `lastIndex` replaces the second tetrahedron's last point index, `types` (when not empty) the cell types,
+// and a binary file is cut `cut` bytes short.
+struct LegacyTets {
+  bool binary = false, v51 = false;
+  long long lastIndex = -1;
+  std::vector<long long> types;
+  std::size_t cut = 0;
+};
+
+std::string legacyTets(const LegacyTets& p) {
+  std::ostringstream out;
+  out << "# vtk DataFile Version " << (p.v51 ? "5.1" : "4.2") << "\ntwo tetrahedra\n" << (p.binary ? "BINARY" : "ASCII")
+      << "\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n";
+  const float xyz[15] = {0, 0, 0, 10, 0, 0, 0, 10, 0, 0, 0, 10, 10, 10, 10};
+  for (float c : xyz) out << (p.binary ? floatBigEndian(c) : std::to_string(c) + " ");
+  out << "\n";
+  const auto integers = [&](const std::vector<long long>& values, int bytes) {
+    for (long long v : values) out << (p.binary ? bigEndian(static_cast<std::uint64_t>(v), bytes) : std::to_string(v) + " ");
+    out << "\n";
+  };
+  std::vector<long long> ids{0, 1, 2, 3, 1, 2, 3, p.lastIndex >= 0 ? p.lastIndex : 4};
+  if (p.v51) {
+    out << "CELLS 3 8\nOFFSETS vtktypeint64\n";
+    integers({0, 4, 8}, 8);
+    out << "CONNECTIVITY vtktypeint64\n";
+    integers(ids, 8);
+  } else {
+    out << "CELLS 2 10\n";
+    ids.insert(ids.begin() + 4, 4);
+    ids.insert(ids.begin(), 4);
+    integers(ids, 4);
+  }
+  const std::vector<long long> types = p.types.empty() ? std::vector<long long>{10, 10} : p.types;
+  out << "CELL_TYPES " << types.size() << "\n";
+  integers(types, 4);
+  std::string text = out.str();
+  return text.substr(0, text.size() - std::min(p.cut, text.size()));
+}
+
+// Each layout, ASCII and binary: the two tetrahedra read; a point index beyond POINTS, fewer cell types than
+// cells, a type VTK would truncate to a tetrahedron (266 = 256 + 10) and a cut binary file are refused
+// before vtkUnstructuredGridReader reads them.
+TEST(BadMeshFile, LegacyVtkTetrahedra) {
+  const std::string folder = std::string(VESALIUS_TEST_OUTPUT) + "/legacy-vtk-tets";
+  fs::create_directories(folder);
+  for (const bool v51 : {false, true})
+    for (const bool binary : {false, true}) {
+      const std::string name = folder + "/tets" + (v51 ? "_v51" : "_v42") + (binary ? "_binary" : "_ascii");
+      LegacyTets p;
+      p.binary = binary;
+      p.v51 = v51;
+      writeFile(name + ".vtk", legacyTets(p));
+      const TetMesh mesh = readTetMesh(name + ".vtk");
+      ASSERT_EQ(mesh.V.rows(), 5) << name;
+      ASSERT_EQ(mesh.T.rows(), 2) << name;
+      for (int t = 0; t < 2; ++t) {
+        std::vector<int> corners{mesh.T(t, 0), mesh.T(t, 1), mesh.T(t, 2), mesh.T(t, 3)};
+        std::sort(corners.begin(), corners.end());
+        EXPECT_EQ(corners, (std::vector<int>{t, t + 1, t + 2, t + 3})) << name << " tetrahedron " << t;
+      }
+      std::cout << name << ": " << mesh.T.rows() << " tetrahedra\n";
+
+      p.lastIndex = 5;
+      writeFile(name + "_index.vtk", legacyTets(p));
+      test::expectOneLineBadInput(name + "_index.vtk", "CELLS cell 2 refers to point 5 of 5",
+                                  [&] { readTetMesh(name + "_index.vtk"); });
+      p.lastIndex = -1;
+      p.types = {10};
+      writeFile(name + "_types.vtk", legacyTets(p));
+      test::expectOneLineBadInput(name + "_types.vtk", "CELL_TYPES declares 1 cells, CELLS 2",
+                                  [&] { readTetMesh(name + "_types.vtk"); });
+      p.types = {10, 266};
+      writeFile(name + "_266.vtk", legacyTets(p));
+      test::expectOneLineBadInput(name + "_266.vtk", "CELL_TYPES cell 2 is of VTK cell type 266",
+                                  [&] { readTetMesh(name + "_266.vtk"); });
+      p.types.clear();
+      if (binary) {
+        p.cut = 5;  // into the cell types
+        writeFile(name + "_cut.vtk", legacyTets(p));
+        test::expectOneLineBadInput(name + "_cut.vtk", "2 cell types take 2 x 4 bytes, but only",
+                                    [&] { readTetMesh(name + "_cut.vtk"); });
+      }
+    }
 }
 
 // A PLY polygon whose last line lacks its newline is refused; with it, it reads, at each size.
