@@ -30,6 +30,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vesalius::test {
@@ -55,6 +56,8 @@ const std::vector<Case>& catalogue() {
       {"nifti_nan_srow", {"segment", "--scan", "{D}/nan_srow.nii", "--modality", "mri", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/nan_srow.nii: the orientation field srow_x[3] is not a finite number", "{D}/nan_srow.nii"},
       {"dicom_file_cut_at_1000_bytes", {"info", "{D}/cut1000.dcm"}, 3, "{D}/cut1000.dcm: the file is cut short", "{D}/cut1000.dcm"},
       {"dicom_folder_with_file_cut_at_1000_bytes", {"info", "{D}/dicom_cut1000"}, 3, "{D}/dicom_cut1000/01.dcm: the file is cut short", "{D}/dicom_cut1000/01.dcm"},
+      {"vtk_tets_cells_beyond_file", {"info", "{D}/tets_cells_beyond_file.vtk"}, 3, "{D}/tets_cells_beyond_file.vtk: line 7: cell list size 1000000000 is out of range", "{D}/tets_cells_beyond_file.vtk"},
+      {"vtk_tets_cell_runs_past", {"fit", "--template", "{D}/tets_cell_runs_past.vtk", "--icp", "{D}/markers.mrk.json", "--unattached", "--out", "{D}/fitted.vtu"}, 3, "{D}/tets_cell_runs_past.vtk: line 7: CELLS cell 2 runs past the 10 values declared", "{D}/tets_cell_runs_past.vtk"},
       {"nifti_negative_size", {"info", "{D}/negative_size.nii"}, 3, "{D}/negative_size.nii: dim[3] is not a positive size", "{D}/negative_size.nii"},
       // Item 5: an output that is an input, --force or not.
       {"segment_out_is_scan", {"segment", "--scan", "{D}/mr.nii", "--modality", "mri", "--out", "{D}/mr.nii", "--force"}, 2, "{D}/mr.nii: --out names the input --scan {D}/mr.nii", "{D}/mr.nii"},
@@ -89,6 +92,8 @@ const std::vector<Case>& catalogue() {
       {"mri_constant", {"segment", "--scan", "{D}/constant.nii", "--modality", "mri", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/constant.nii: MRI is constant", "{D}/constant.nii"},
       {"ct_without_body", {"segment", "--scan", "{D}/air.nii", "--modality", "ct", "--out", "{D}/labels_out.nii.gz"}, 3, "{D}/air.nii: CT has no body", "{D}/air.nii"},
       {"reference_json_string_version", {"fat", "edit", "--reference", "{D}/reference_string_version", "--amounts", "{D}/amounts.json", "--out-mesh", "{D}/fat.vtp"}, 3, "{D}/reference_string_version/reference.json:", "{D}/reference_string_version/reference.json"},
+      {"collinear_landmarks", {"fit", "--template", "{D}/octahedron.vtk", "--icp", "{D}/markers.mrk.json", "--template-landmarks", "{D}/line_template.mrk.json", "--scan-landmarks", "{D}/line_scan.mrk.json", "--unattached", "--out", "{D}/fitted.vtu"}, 3, "{D}/octahedron.vtk, {D}/markers.mrk.json, {D}/line_template.mrk.json, {D}/line_scan.mrk.json: the paired points are collinear", "{D}/line_template.mrk.json"},
+      {"rig_skeleton_outside_the_skin", {"rig", "--skin", "{D}/octahedron.vtk", "--skeleton", "{D}/far.bvh", "--voxel-size", "4", "--target-tets", "500", "--no-cor-centres", "--out", "{D}/rig"}, 3, "{D}/octahedron.vtk, {D}/far.bvh: bone weights: no vertex is labelled as bone", "{D}/far.bvh"},
       {"missing_required_option", {"segment", "--scan", "{D}/mr.nii"}, 2, "--out is required", "--out"},
       {"vtp_claiming_4e9_points", {"info", "{D}/huge.vtp"}, 3, "{D}/huge.vtp: NumberOfPoints=\"4000000000\" is more than", "{D}/huge.vtp"},
       {"output_name_too_long", {"labels", "crop", "--labels", "{D}/labels.nii.gz", "--out", "{D}/" + std::string(300, 'x') + ".nii.gz"}, 2, "{D}/" + std::string(300, 'x') + ".nii.gz: --out names a path too long", "{D}/" + std::string(300, 'x') + ".nii.gz"},
@@ -190,6 +195,9 @@ void makeFiles(const std::string& d) {
     binaryPly.append(reinterpret_cast<const char*>(face), sizeof face);
   }
   writeBytes(d + "/face_index_binary.ply", binaryPly);
+  // Legacy tet meshes on which vtkUnstructuredGridReader segfaults and overruns its heap (testdata/bad/SOURCE.md).
+  for (const char* name : {"tets_cells_beyond_file.vtk", "tets_cell_runs_past.vtk"})
+    fs::copy_file(std::string(VESALIUS_TESTDATA) + "/bad/mesh_" + name, d + "/" + name);
 
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   std::string qoffset = nifti(ramp());
@@ -266,6 +274,23 @@ void makeFiles(const std::string& d) {
     markers.markers.push_back(m);
   }
   io::writeMarkers(d + "/markers.mrk.json", markers);
+  // Three landmarks on a line, paired by label with three on another line: no rotation fits them.
+  for (const auto& [file, step] : {std::pair<std::string, double>{"line_template", 5.0}, {"line_scan", 6.0}}) {
+    MarkerSet line;
+    for (int n = 0; n < 3; ++n) {
+      Marker m;
+      m.label = std::string(1, char('a' + n));
+      m.kind = MarkerKind::Landmark;
+      m.position = Eigen::Vector3d(step * n, 0, 0);
+      line.markers.push_back(m);
+    }
+    io::writeMarkers(d + "/" + file + ".mrk.json", line);
+  }
+  // A one-bone skeleton a metre away from the octahedron it is to rig: no vertex of the skin's tets is bone.
+  writeBytes(d + "/far.bvh",
+             "HIERARCHY\nROOT pelvis\n{\n  OFFSET 1000 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation "
+             "Xrotation Yrotation\n  End Site\n  {\n    OFFSET 0 0 10\n  }\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n"
+             "0 0 0 0 0 0\n");
 
   LabelMap labels;
   labels.labels.geometry.size = Eigen::Vector3i(12, 12, 12);
