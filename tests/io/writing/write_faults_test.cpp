@@ -7,9 +7,11 @@
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/markers.h"
 #include "vesalius/core/mesh.h"
+#include "vesalius/core/skeleton.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/motion_io.h"
 
 #include <gtest/gtest.h>
 
@@ -149,6 +151,39 @@ TriMesh sheet(int n) {
   return mesh;
 }
 
+// A wavy sheet's vertices lifted into a slab of n by n by 2 vertices, each square column split into three
+// tetrahedra (the rows only need valid indices for the writers).
+TetMesh slab(int n) {
+  const TriMesh top = sheet(n);
+  TetMesh tets;
+  tets.V.resize(2 * top.V.rows(), 3);
+  tets.V << top.V, top.V.rowwise() + Eigen::RowVector3d(0, 0, 1.7);
+  tets.T.resize(3 * top.F.rows(), 4);
+  const int lift = int(top.V.rows());
+  for (Eigen::Index f = 0; f < top.F.rows(); ++f) {
+    const int a = top.F(f, 0), b = top.F(f, 1), c = top.F(f, 2);
+    tets.T.row(3 * f) << a, b, c, c + lift;
+    tets.T.row(3 * f + 1) << a, b, c + lift, b + lift;
+    tets.T.row(3 * f + 2) << a, a + lift, b + lift, c + lift;
+  }
+  return tets;
+}
+
+// A one-joint motion of `frames` frames of six channels.
+Motion longMotion(int frames) {
+  Motion motion;
+  Joint root;
+  root.name = "pelvis";
+  root.tail = Eigen::Vector3d(0, 0, 10);
+  motion.skeleton.joints.push_back(root);
+  motion.channels = {{Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation,
+                      Channel::Xrotation, Channel::Yrotation}};
+  motion.values.resize(frames, 6);
+  for (int f = 0; f < frames; ++f)
+    for (int c = 0; c < 6; ++c) motion.values(f, c) = 0.123456789 * f + 10.5 * c;
+  return motion;
+}
+
 MarkerSet manyMarkers(int count) {
   MarkerSet set;
   set.name = "icp";
@@ -169,7 +204,26 @@ std::vector<Case> writers() {
   static const LabelMap labels = noiseLabels(48);      // 110 kB of uint8 noise
   static const TriMesh mesh = sheet(120);              // 14,400 vertices, 28,322 triangles
   static const MarkerSet markers = manyMarkers(2000);  // about 1 MB as markups JSON
+  static const TriMesh smallMesh = sheet(40);          // 1,600 vertices, 3,042 triangles (760 kB as ASCII STL)
+  static const TetMesh tets = slab(40);                // 3,200 vertices, 9,126 tetrahedra
+  static const Motion motion = longMotion(20000);      // about 1.5 MB of BVH frames
+  const auto asciiMesh = [] {
+    MeshWriteOptions options;
+    options.binary = false;
+    return options;
+  };
   return {
+      {"binary STL mesh (writeTriMesh)", "skin.stl", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"ASCII STL mesh (writeTriMesh)", "skin-ascii.stl", [=](const std::string& p) { writeTriMesh(p, smallMesh, asciiMesh()); }},
+      {"legacy VTK surface (writeTriMesh)", "skin.vtk", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"ASCII legacy VTK surface (writeTriMesh)", "skin-ascii.vtk", [=](const std::string& p) { writeTriMesh(p, mesh, asciiMesh()); }},
+      {"glTF binary (writeTriMesh)", "skin.glb", [](const std::string& p) { writeTriMesh(p, mesh); }},
+      {"VTU tet mesh (writeTetMesh)", "tets.vtu", [](const std::string& p) { writeTetMesh(p, tets); }},
+      {"legacy VTK tet mesh (writeTetMesh)", "tets.vtk", [](const std::string& p) { writeTetMesh(p, tets); }},
+      {"Gmsh tet mesh (writeTetMesh)", "tets.msh", [](const std::string& p) { writeTetMesh(p, tets); }},
+      {"MEDIT tet mesh (writeTetMesh)", "tets.mesh", [](const std::string& p) { writeTetMesh(p, tets); }},
+      {"BVH motion (writeBvh)", "motion.bvh", [](const std::string& p) { writeBvh(p, motion); }},
+      {"CSV markers (writeMarkers)", "icp.csv", [](const std::string& p) { writeMarkers(p, markers); }},
       {"NIfTI scan (writeScan)", "th.nii.gz", [](const std::string& p) { writeScan(p, image); }},
       {"MetaImage scan (writeScan)", "scan.mha", [](const std::string& p) { writeScan(p, image); }},
       {"NRRD scan (writeScan)", "scan.nrrd", [](const std::string& p) { writeScan(p, image); }},
