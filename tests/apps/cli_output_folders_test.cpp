@@ -8,9 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +163,53 @@ TEST(CliOutputFolders, AnOutputFolderThatIsOrHoldsAnInputIsRefused) {
     const std::string out = args[args.size() - 2];
     expectFailsLeavingAllAsItWas(run, 2, dir, out, "input");
   }
+}
+
+// Ctrl-C while `rig --force` writes its folder (issue 32, item 6): the program dies of the signal, and the
+// old folder is whole, with nothing beside it. The signal is sent as soon as the hidden staging folder
+// appears beside the output, so it lands while the files are written.
+TEST(CliOutputFolders, SigintWhileWritingLeavesTheOldFolder) {
+  const std::string dir = freshDir("sigint"), out = dir + "/rig";
+  const std::string tissue = kBody + "shapes/mh_neutral_body.obj";
+  writeOldFolder(out);
+  const std::map<std::string, std::string> before = contents(dir);
+  const std::vector<std::string> args{VESALIUS_EXE, "rig", "--skin", tissue, "--skeleton", kBody + "default.mhskel",
+                                      "--voxel-size", "8", "--target-tets", "8000", "--no-cor-centres", "--out", out,
+                                      "--force", "--progress", "none"};
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(VESALIUS_EXE, argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  bool signalled = false;
+  while (::waitpid(child, &status, WNOHANG) == 0) {
+    if (!signalled && std::distance(fs::directory_iterator(dir), fs::directory_iterator()) > 1) {
+      ASSERT_EQ(::kill(child, SIGINT), 0);
+      signalled = true;
+    }
+    ::usleep(200);
+  }
+  if (!signalled) GTEST_SKIP() << "rig ended (status " << status << ") before its staging folder was seen";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "wait status " << status;
+  const std::map<std::string, std::string> after = contents(dir);
+  EXPECT_EQ(after.size(), before.size());
+  for (const auto& [path, bytes] : after) {
+    const auto was = before.find(path);
+    if (was == before.end())
+      ADD_FAILURE() << "left behind: " << path;
+    else
+      EXPECT_TRUE(was->second == bytes) << path << " changed";
+  }
+  std::cout << "SIGINT while rig wrote " << out << ": " << after.size() << " entries after, " << before.size()
+            << " before\n";
 }
 
 // An output, or a report, in a folder the user cannot write to is refused before any work, in one line
