@@ -321,6 +321,22 @@ TEST(BadMeshFile, LegacyVtkTetrahedra) {
                                     [&] { readTetMesh(name + "_cut.vtk"); });
       }
     }
+  // CELLS and CELL_TYPES go together, once each (vtkUnstructuredGridReader pairs a second list with the
+  // first's types).
+  const std::string ascii = legacyTets({});
+  const std::size_t types = ascii.find("CELL_TYPES");
+  const struct {
+    std::string name, text, expected;
+  } sections[] = {
+      {"cells_only", ascii.substr(0, types), "line 7: CELLS without CELL_TYPES"},
+      {"types_only", ascii.substr(0, ascii.find("CELLS")) + ascii.substr(types), "line 7: CELL_TYPES without CELLS"},
+      {"cells_twice", ascii.substr(0, types) + ascii.substr(ascii.find("CELLS")), "line 9: a second CELLS section"},
+      {"types_twice", ascii + ascii.substr(types), "line 11: a second CELL_TYPES section"}};
+  for (const auto& c : sections) {
+    const std::string path = folder + "/tets_" + c.name + ".vtk";
+    writeFile(path, c.text);
+    test::expectOneLineBadInput(path, c.expected, [&] { readTetMesh(path); });
+  }
 }
 
 // A PLY polygon whose last line lacks its newline is refused; with it, it reads, at each size.
