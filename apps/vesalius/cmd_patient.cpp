@@ -103,6 +103,9 @@ void runPatient(const PatientOptions& o) {
       throw UsageError("patient: --frame " + std::to_string(o.frame) + " outside 0.." +
                        std::to_string(motion->frameCount() - 1) + " of " + o.motion);
   }
+  // Bad inputs refused at once, before the reference and the pipeline take their minutes.
+  patient::checkVirtualPatientInputs(scan, organs ? &*organs : nullptr, templates, o.pipeline, o.complete,
+                                     !o.pose.empty() || motion.has_value(), o.scan, o.organs);
   std::optional<ReferenceAnatomy> reference;
   patient::VirtualPatientOptions pipeline = o.pipeline;
   for (rigging::RigOptions* rig : {&pipeline.rigging.modelRig, &pipeline.rigging.rig}) {

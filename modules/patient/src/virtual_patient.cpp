@@ -11,6 +11,7 @@
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
+#include <sstream>
 
 namespace vesalius::patient {
 
@@ -63,21 +64,44 @@ void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<Or
                                "(TotalSegmentator's names, e.g. liver, hip_left); is the label table the right one?");
 }
 
-// The bones the skeleton cannot do without (the spine is optional) that `organs` lacks, or has no voxel of.
-std::vector<std::string> missingSkeletonBones(const LabelMap& organs, const posing::SkeletonFromBonesOptions& bones) {
-  const LabelsWithVoxels present(organs);
-  std::vector<std::string> missing;
+// Why the patient will have no rig, in the user's words, or empty if it will have one: the whole model
+// (with the reference) is rigged from its own bones, the scan alone from the organ map's pelvis and femurs
+// (the spine is optional).
+std::string noRigBecause(const LabelMap* organs, const VirtualPatientOptions& options, bool withReference) {
+  if (!options.rig) return "not asked for";
+  if (withReference) return "";
+  if (!organs) return "no organ map: the skeleton comes from its bone labels";
+  const posing::SkeletonFromBonesOptions& bones = options.rigging.bones;
+  const LabelsWithVoxels present(*organs);
+  std::string missing;
   for (const std::string& name : {bones.hipLeft, bones.hipRight, bones.sacrum, bones.femurLeft, bones.femurRight})
-    if (!present.idOf(name)) missing.push_back(name);
-  return missing;
+    if (!present.idOf(name)) missing += " " + name;
+  return missing.empty() ? "" : "the organ map has no voxels of" + missing;
 }
 
 }  // namespace
 
+void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+                               const VirtualPatientOptions& options, bool withReference, bool posed,
+                               const std::string& scanSource, const std::string& organsSource) {
+  // Segmentation's first test, without its work (segmentation/ct_tissues.h).
+  const float bodyMinHu = segmentation::CtTissueOptions{}.bodyMinHu;
+  if (std::none_of(ct.values.begin(), ct.values.end(), [&](float v) { return v >= bodyMinHu; })) {
+    std::ostringstream problem;
+    problem << "CT has no body: no voxel at or above " << bodyMinHu << " HU";
+    throw BadInput(scanSource, problem.str());
+  }
+  if (organs) checkOrganMap(ct, *organs, templates, scanSource, organsSource);
+  if (!posed) return;
+  if (const std::string why = noRigBecause(organs, options, withReference); !why.empty())
+    throw BadInput(organs ? organsSource : scanSource, "cannot pose the patient: " + why);
+}
+
 VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                    const VirtualPatientOptions& options, const std::string& scanSource,
                                    const std::string& organsSource, Progress* progress) {
-  if (organs) checkOrganMap(ct, *organs, templates, scanSource, organsSource);
+  checkVirtualPatientInputs(ct, organs, templates, options, options.fullBodyReference != nullptr, false, scanSource,
+                            organsSource);
   VirtualPatient patient;
   StageClock clock(patient.stageSeconds);
   try {
@@ -148,18 +172,12 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
     clock.end("anatomy rules");
   }
 
-  if (!options.rig) {
-    patient.noRigBecause = "not asked for";
-  } else if (patient.whole) {
-    patient.rig = rigWholeModel(patient.whole->anatomy, options.rigging, scanSource + " (the whole model)", progress);
-    clock.end("rig");
-  } else if (!organs) {
-    patient.noRigBecause = "no organ map: the skeleton comes from its bone labels";
-  } else if (const std::vector<std::string> missing = missingSkeletonBones(*organs, options.rigging.bones); !missing.empty()) {
-    patient.noRigBecause = "the organ map has no voxels of";
-    for (const std::string& m : missing) patient.noRigBecause += " " + m;
-  } else {
-    patient.rig = rigPatient(patient.tissueClasses, *organs, patient.anatomy, options.rigging, organsSource, progress);
+  patient.noRigBecause = noRigBecause(organs, options, patient.whole.has_value());
+  if (patient.noRigBecause.empty()) {
+    if (patient.whole)
+      patient.rig = rigWholeModel(patient.whole->anatomy, options.rigging, scanSource + " (the whole model)", progress);
+    else
+      patient.rig = rigPatient(patient.tissueClasses, *organs, patient.anatomy, options.rigging, organsSource, progress);
     clock.end("rig");
   }
   return patient;

@@ -102,6 +102,15 @@ struct VirtualPatient {
   const ReferenceAnatomy& model() const { return whole ? whole->anatomy : anatomy; }
 };
 
+// What buildVirtualPatient refuses, without its work, for a caller with long work of its own before it (the
+// full-body reference): a CT without a voxel of the body's density (naming `scanSource`), an organ map on
+// another grid or with no label the model knows (naming `organsSource`), and when the patient is to be posed
+// (`posed`), a patient without a rig: without the reference (`withReference` false), one without an organ map
+// holding the pelvis and femurs (naming the organ map, or the scan without one). Throws BadInput.
+void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+                               const VirtualPatientOptions& options, bool withReference, bool posed,
+                               const std::string& scanSource, const std::string& organsSource);
+
 // ct: a CT in HU. organs: its organ/bone segmentation on the same grid, or null. Throws BadInput naming
 // `scanSource` for a scan with no body, naming `organsSource` for a label map on another grid or one in
 // which neither a template's organ nor any other label has voxels.
