@@ -25,11 +25,14 @@ function(vesalius_module)
   vesalius_target_flags(vesalius_${M_NAME})
 endfunction()
 
-# vesalius_test(NAME <t> SOURCES ... LIBS ... LABELS ...)
+# vesalius_test(NAME <t> SOURCES ... LIBS ... LABELS ... [LONG])
 # A GoogleTest executable whose tests ctest discovers, each carrying LABELS. Tests find the shipped
-# data through the VESALIUS_TESTDATA macro and may write under VESALIUS_TEST_OUTPUT.
+# data through the VESALIUS_TESTDATA macro and may write under VESALIUS_TEST_OUTPUT. LONG: some of its
+# tests take minutes, and ctest starts them all first (COST): on a fresh clone ctest has no timings of its
+# own and starts tests in the order they were declared, which leaves the last long one running alone at
+# the end of `ctest -j`.
 function(vesalius_test)
-  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "LONG" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
@@ -46,4 +49,10 @@ function(vesalius_test)
   endif()
   gtest_discover_tests(${T_NAME} NO_PRETTY_VALUES PROPERTIES LABELS "${T_LABELS}" ${environment}
                        DISCOVERY_TIMEOUT 60)
+  if(T_LONG)
+    # Read by ctest after the discovered tests, whose names are in ${T_NAME}_TESTS.
+    set(cost ${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_cost.cmake)
+    file(WRITE ${cost} "if(${T_NAME}_TESTS)\n  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES COST 1000)\nendif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${cost})
+  endif()
 endfunction()
