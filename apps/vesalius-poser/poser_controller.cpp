@@ -34,8 +34,9 @@ void PoserController::showFrame(int frame) {
   const int count = motion_.frameCount();
   frame_ = ((frame % count) + count) % count;
   const auto start = std::chrono::steady_clock::now();
-  session_.skinTets(motion_.pose(frame_), method_, tets_);
-  session_.carry(tets_, carried_);
+  const std::vector<Eigen::Isometry3d> world = motion_.pose(frame_);
+  session_.skinTets(world, method_, tets_);
+  session_.carry(tets_, world, carried_);
   skinningMs_ = 1000 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   actors_.setPoints(carried_);
   window_.setSliderFrame(frame_);

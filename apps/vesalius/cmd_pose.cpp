@@ -107,7 +107,7 @@ void runPose(const PoseOptions& o) {
       const posing::RigPoser::Repairs repairs = session.skinTets(poses[p].world, o.method, tets);
       skinningSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::vector<MatrixX3d> carried;
-      session.carry(tets, carried);
+      session.carry(tets, poses[p].world, carried);
       quality.push_back(meter(tets, carried));
       quality.back().restore = repairs.restore;
       quality.back().untangle = repairs.untangle;

@@ -13,6 +13,7 @@
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/rigging/body_rig.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -65,6 +66,9 @@ std::vector<std::pair<std::string, TriMesh>> withTissues(const RigOptions& o, st
 void finishRig(const RigOptions& o, rigging::BuiltRig& built, std::vector<std::pair<std::string, TriMesh>> meshes,
                io::Report& report) {
   for (const auto& [stage, seconds] : built.stageSeconds) report.stage(stage, seconds);
+  std::vector<std::string> names;
+  for (const auto& [name, mesh] : meshes) names.push_back(name);
+  built.rig.meshJoint = rigging::meshJoints(names, built.boneJoints);
   const AnatomyRig& rig = built.rig;
   io::writeAnatomyRig(o.out, rig, meshes, o.common.writeOptions());
   report.output("anatomy", o.out);
@@ -73,6 +77,7 @@ void finishRig(const RigOptions& o, rigging::BuiltRig& built, std::vector<std::p
   report.metric("tet_vertices", rig.tets.V.rows());
   report.metric("tets", rig.tets.T.rows());
   report.metric("bones", rig.boneJoint.size());
+  report.metric("bone_meshes", std::count_if(rig.meshJoint.begin(), rig.meshJoint.end(), [](int j) { return j >= 0; }));
   report.metric("bone_vertices", boneVertices);
   if (!std::isnan(built.femoralHeadRadiusLeft)) {
     report.metric("femoral_head_radius_left_mm", built.femoralHeadRadiusLeft);

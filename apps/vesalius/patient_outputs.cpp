@@ -85,7 +85,9 @@ nlohmann::json qualityReport(const patient::PosedPatient& posed) {
           {"tissue_vertices_left_outside", q.leftOutside},
           {"tissue_vertices_inside_at_rest", posed.tissueVerticesInsideAtRest},
           {"untangled_tets", q.untangle.badBefore},
-          {"restore_max_move_mm", q.restore.maxMove}};
+          {"restore_max_move_mm", q.restore.maxMove},
+          {"max_bone_mesh_gap_mm", q.boneMeshGapMax},
+          {"mean_bone_mesh_gap_mm", q.boneMeshGapMean}};
 }
 
 // DIR/posed/: the posed model (anatomy/ and patient.glb), the rig's posed tets and skeleton, the scan and

@@ -75,7 +75,8 @@ void writeQualityTable(const std::string& path, const std::vector<PoseSpec>& pos
 
 void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<PoseQuality>& quality,
                         long insideAtRest, io::Report& report) {
-  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0, boneMove = 0;
+  std::size_t inverted = 0, ratio = 0, skin = 0, left = 0, repaired = 0, move = 0, restoreMove = 0, boneMove = 0,
+              gap = 0;
   long repairedTotal = 0, boneOnly = 0, unrepaired = 0, released = 0;
   for (std::size_t p = 0; p < quality.size(); ++p) {
     repairedTotal += quality[p].untangle.badBefore;
@@ -90,6 +91,7 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
     if (quality[p].minVolumeRatio < quality[ratio].minVolumeRatio) ratio = p;
     if (std::abs(quality[p].skinVolumeChangePct) > std::abs(quality[skin].skinVolumeChangePct)) skin = p;
     if (quality[p].leftOutside > quality[left].leftOutside) left = p;
+    if (quality[p].boneMeshGapMax > quality[gap].boneMeshGapMax) gap = p;
   }
   const auto frame = [&](std::size_t p) {
     return poses[p].frame < 0 ? std::string("-") : std::to_string(poses[p].frame);
@@ -99,6 +101,7 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
   report.metric("worst_skin_volume_change_pct", quality[skin].skinVolumeChangePct);
   report.metric("max_tissue_vertices_left_outside", quality[left].leftOutside);
   report.metric("tissue_vertices_inside_at_rest", insideAtRest);
+  report.metric("max_bone_mesh_gap_mm", quality[gap].boneMeshGapMax);
   std::cout << "worst over " << poses.size() << " pose(s): " << quality[inverted].inverted
             << " inverted or flat tets (frame " << frame(inverted) << "), smallest posed/rest tet volume "
             << quality[ratio].minVolumeRatio << " (frame " << frame(ratio) << "), skin volume change "
@@ -124,6 +127,9 @@ void reportWorstQuality(const std::vector<PoseSpec>& poses, const std::vector<Po
   if (released > 0)
     std::cout << "folds pressed between bones freed " << released << " bone vertices in all, moved by up to "
               << quality[boneMove].untangle.maxBoneMove << " mm (frame " << frame(boneMove) << ")\n";
+  if (quality[gap].boneMeshGapMax > 0)
+    std::cout << "bone meshes moved rigidly lie up to " << quality[gap].boneMeshGapMax
+              << " mm from where the tets carry their surroundings (frame " << frame(gap) << ")\n";
 }
 
 }  // namespace vesalius::cli

@@ -9,6 +9,7 @@
 
 #include "vesalius/io/gltf.h"
 #include "vesalius/io/reference_anatomy_io.h"
+#include "vesalius/io/text_file.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/surface_samples.h"
@@ -17,6 +18,8 @@
 #include "vesalius/segmentation/label_ops.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include <iostream>
 
@@ -35,6 +38,14 @@ std::string fresh(const std::string& name) {
 double diceWithLabel(const TriMesh& mesh, const LabelMap& labels, Label id) {
   const Grid<std::uint8_t> inside = meshing::windingNumberMask(mesh, labels.labels.geometry);
   return segmentation::diceCoefficient(inside, segmentation::maskOf(labels.labels, id));
+}
+
+// How far `posed` is from the nearest rigid motion of `rest` (Eigen::umeyama, no scaling): the largest
+// vertex distance, mm.
+double offRigid(const MatrixX3d& rest, const MatrixX3d& posed) {
+  const Eigen::Matrix4d m = Eigen::umeyama(rest.transpose(), posed.transpose(), false);
+  const MatrixX3d moved = (rest * m.topLeftCorner<3, 3>().transpose()).rowwise() + m.topRightCorner<3, 1>().transpose();
+  return (moved - posed).rowwise().norm().maxCoeff();
 }
 
 // Mean distance from the label's boundary inside the scan to `mesh`, mm.
@@ -128,6 +139,26 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   EXPECT_EQ(pose["inverted_tets"].get<long>(), 0);
   EXPECT_LT(std::abs(pose["skin_volume_change_pct"].get<double>()), 1.0);
   EXPECT_EQ(pose["tissue_vertices_left_outside"].get<long>(), 0);
+  // Every bone mesh the rig was made of moves rigidly with its joint (rig/bone_meshes.txt lists them); the
+  // tissue next to it is carried by the tets, up to max_bone_mesh_gap_mm from it.
+  const ReferenceAnatomy posedAnatomy = io::readReferenceAnatomy(out + "/posed/anatomy");
+  std::istringstream boneMeshes(io::readTextFile(out + "/rig/bone_meshes.txt"));
+  int rigidBones = 0;
+  double worstOffRigid = 0;
+  for (std::string line; std::getline(boneMeshes, line);) {
+    const std::string name = fs::path(line.substr(0, line.find('\t'))).stem().string();
+    const auto at = [&](const ReferenceAnatomy& a) {
+      return std::find_if(a.tissues.begin(), a.tissues.end(), [&](const ReferenceTissue& t) { return t.name == name; });
+    };
+    ASSERT_NE(at(anatomy), anatomy.tissues.end()) << name;
+    ASSERT_NE(at(posedAnatomy), posedAnatomy.tissues.end()) << name;
+    worstOffRigid = std::max(worstOffRigid, offRigid(at(anatomy)->mesh.V, at(posedAnatomy)->mesh.V));
+    ++rigidBones;
+  }
+  std::cout << rigidBones << " bone meshes, the largest vertex distance from a rigid motion " << worstOffRigid
+            << " mm; the tissue next to them up to " << pose["max_bone_mesh_gap_mm"] << " mm from their surface\n";
+  EXPECT_GT(rigidBones, 40);
+  EXPECT_LT(worstOffRigid, 1e-6);
   for (const char* file : {"posed/anatomy/reference.json", "posed/patient.glb", "posed/tets.vtu", "posed/skeleton.bvh",
                            "posed/scan.nii.gz", "posed/organs.nii.gz", "rig/rig.vtu", "rig/meshes/skin.obj"})
     EXPECT_TRUE(fs::exists(out + "/" + file)) << file;

@@ -116,12 +116,24 @@ void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
     if (hasRotatedFrames(rig.skeleton)) writeFrames(staging + "/frames.txt", rig.skeleton, {});
     // Mesh names come from label tables and reference.json: their stems are made safe (their extensions are
     // the writer's format).
-    for (const auto& [name, mesh] : meshes) {
-      const fs::path file(name);
-      const std::string relative = "meshes/" + safeFileName(file.stem().string()) + file.extension().string();
-      if (fs::exists(staging + "/" + relative)) throw BadInput(dir, "two meshes share the file name " + relative);
-      writeTriMesh(staging + "/" + relative, mesh);
+    if (!rig.meshJoint.empty() && rig.meshJoint.size() != meshes.size())
+      throw UsageError("writeAnatomyRig: " + std::to_string(rig.meshJoint.size()) + " mesh joints for " +
+                       std::to_string(meshes.size()) + " meshes");
+    std::ostringstream boneMeshes;
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      const fs::path file(meshes[m].first);
+      const std::string name = safeFileName(file.stem().string()) + file.extension().string();
+      if (fs::exists(staging + "/meshes/" + name)) throw BadInput(dir, "two meshes share the file name meshes/" + name);
+      writeTriMesh(staging + "/meshes/" + name, meshes[m].second);
+      if (const int j = rig.jointOfMesh(m); j >= 0) boneMeshes << name << '\t' << rig.skeleton.joints[std::size_t(j)].name << '\n';
     }
+    if (!boneMeshes.str().empty())
+      writeAtomically(staging + "/bone_meshes.txt", {}, [&](const std::string& path) {
+        std::ofstream out(path);
+        out << boneMeshes.str();
+        out.close();
+        if (!out) throw BadInput(path, "cannot write");
+      });
   });
 }
 
@@ -150,6 +162,22 @@ AnatomyRig readAnatomyRig(const std::string& dir) {
   if (fs::is_directory(dir + "/meshes"))
     for (const auto& entry : fs::directory_iterator(dir + "/meshes")) rig.meshes.push_back(entry.path().string());
   std::sort(rig.meshes.begin(), rig.meshes.end());
+  const std::string boneMeshesPath = dir + "/bone_meshes.txt";
+  if (fs::exists(boneMeshesPath)) {
+    rig.meshJoint.assign(rig.meshes.size(), -1);
+    std::istringstream lines(readTextFile(boneMeshesPath));
+    for (std::string line; std::getline(lines, line);) {
+      if (line.empty()) continue;
+      const std::size_t tab = line.find('\t');
+      const std::string file = line.substr(0, tab), joint = tab == std::string::npos ? "" : line.substr(tab + 1);
+      const auto mesh = std::find_if(rig.meshes.begin(), rig.meshes.end(),
+                                     [&](const std::string& m) { return fs::path(m).filename() == file; });
+      const int j = rig.skeleton.find(joint);
+      if (mesh == rig.meshes.end() || j < 0)
+        throw BadInput(boneMeshesPath, "line '" + line + "' is not a file of meshes/, a tab and a joint of skeleton.bvh");
+      rig.meshJoint[std::size_t(mesh - rig.meshes.begin())] = j;
+    }
+  }
   return rig;
 }
 

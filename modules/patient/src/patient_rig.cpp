@@ -6,6 +6,7 @@
 #include "vesalius/rigging/body_rig.h"
 
 #include <algorithm>
+#include <map>
 
 namespace vesalius::patient {
 
@@ -63,11 +64,13 @@ GridGeometry gridHolding(const GridGeometry& scan, const TetMesh& rest, const Ma
   return grown;
 }
 
-// The rig's meshes: the model's skin, then its tissues, named by file.
-void carry(PatientRig& rig, const ReferenceAnatomy& model) {
+// The rig's meshes: the model's skin, then its tissues, named by file; the bones the rig was made of move
+// rigidly with their joints.
+void carry(PatientRig& rig, const ReferenceAnatomy& model, const std::map<std::string, int>& boneJoints) {
   rig.meshes.emplace_back("skin.obj", model.skin);
   for (const ReferenceTissue& t : model.tissues) rig.meshes.emplace_back(t.name + ".obj", t.mesh);
   for (const auto& [name, mesh] : rig.meshes) rig.rig.meshes.push_back(name);
+  rig.rig.meshJoint = rigging::meshJoints(rig.rig.meshes, boneJoints);
 }
 
 }  // namespace
@@ -81,7 +84,7 @@ PatientRig rigPatient(const LabelMap& tissueClasses, const LabelMap& organs, con
   PatientRig rig;
   rig.rig = std::move(built.rig);
   rig.stageSeconds = std::move(built.stageSeconds);
-  carry(rig, anatomy);
+  carry(rig, anatomy, built.boneJoints);
   rig.hipLeft = options.bones.femurLeft;
   rig.hipRight = options.bones.femurRight;
   return rig;
@@ -93,7 +96,7 @@ PatientRig rigWholeModel(const ReferenceAnatomy& model, const PatientRigOptions&
   PatientRig rig;
   rig.rig = std::move(built.rig);
   rig.stageSeconds = std::move(built.stageSeconds);
-  carry(rig, model);
+  carry(rig, model, built.boneJoints);
   rig.hipLeft = "femur_l";  // OpenSim's body names (skeleton_from_bone_meshes.h)
   rig.hipRight = "femur_r";
   return rig;
@@ -107,7 +110,7 @@ PosedPatient posePatient(const PatientRig& rig, const std::vector<Eigen::Isometr
   const posing::RigPoser poser(rig.rig, std::move(meshes), options.untangle, options.restoreVolume);
   PosedPatient posed;
   const posing::RigPoser::Repairs repairs = poser.skinTets(world, options.method, posed.tets);
-  poser.carry(posed.tets, posed.meshes);
+  poser.carry(posed.tets, world, posed.meshes);
   const posing::QualityMeter meter(poser.rig(), poser.meshes(), poser.embeddings());
   posed.quality = meter(posed.tets, posed.meshes);
   posed.quality.restore = repairs.restore;

@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace vesalius::posing {
@@ -29,13 +30,16 @@ long leftOutside(const MatrixX3d& posedTets, const TetEmbedding& e, const Matrix
 QualityMeter::QualityMeter(const AnatomyRig& rig, const std::vector<TriMesh>& meshes,
                            const std::vector<TetEmbedding>& embeddings)
     : T_(rig.tets.T), restVolumes_(tetVolumes(rig.tets.V, rig.tets.T)), embeddings_(embeddings) {
-  for (std::size_t m = 0; m < meshes.size(); ++m)
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    rigid_.push_back(rig.jointOfMesh(m) >= 0);
     if (std::filesystem::path(rig.meshes[m]).stem() == "skin") {
       skin_ = int(m);
       skinF_ = meshes[m].F;
       restSkinVolume_ = enclosedVolume(meshes[m].V, meshes[m].F);
     }
-  for (const TetEmbedding& e : embeddings) inside_ += (e.barycentric.rowwise().minCoeff().array() >= -kTolerance).count();
+  }
+  for (std::size_t m = 0; m < embeddings.size(); ++m)
+    if (!rigid_[m]) inside_ += (embeddings[m].barycentric.rowwise().minCoeff().array() >= -kTolerance).count();
 }
 
 PoseQuality QualityMeter::operator()(const MatrixX3d& posedTets, const std::vector<MatrixX3d>& carried) const {
@@ -45,7 +49,24 @@ PoseQuality QualityMeter::operator()(const MatrixX3d& posedTets, const std::vect
   q.minVolumeRatio = (volumes / restVolumes_.array()).minCoeff();
   q.tetVolumeChangePct = 100 * (volumes.sum() / restVolumes_.sum() - 1);
   if (skin_ >= 0) q.skinVolumeChangePct = 100 * (enclosedVolume(carried[skin_], skinF_) / restSkinVolume_ - 1);
-  for (std::size_t m = 0; m < carried.size(); ++m) q.leftOutside += leftOutside(posedTets, embeddings_[m], carried[m]);
+  double gapSum = 0;
+  long gapCount = 0;
+  MatrixX3d byTets;
+  for (std::size_t m = 0; m < carried.size(); ++m) {
+    if (!rigid_[m]) {
+      q.leftOutside += leftOutside(posedTets, embeddings_[m], carried[m]);
+      continue;
+    }
+    embeddings_[m].apply(posedTets, byTets);
+    const Eigen::VectorXd gap = (carried[m] - byTets).rowwise().norm();
+    for (Eigen::Index p = 0; p < gap.size(); ++p) {
+      if (embeddings_[m].barycentric.row(p).minCoeff() < -kTolerance) continue;  // outside the rest tets
+      q.boneMeshGapMax = std::max(q.boneMeshGapMax, gap[p]);
+      gapSum += gap[p];
+      ++gapCount;
+    }
+  }
+  if (gapCount > 0) q.boneMeshGapMean = gapSum / double(gapCount);
   return q;
 }
 

@@ -21,6 +21,11 @@ RigPoser::RigPoser(AnatomyRig rig, std::vector<TriMesh> meshes, bool untangle, b
   if (meshes_.size() != rig_.meshes.size())
     throw UsageError("RigPoser: " + std::to_string(meshes_.size()) + " meshes for the rig's " +
                      std::to_string(rig_.meshes.size()) + " names");
+  if (!rig_.meshJoint.empty() && rig_.meshJoint.size() != rig_.meshes.size())
+    throw UsageError("RigPoser: " + std::to_string(rig_.meshJoint.size()) + " mesh joints for " +
+                     std::to_string(rig_.meshes.size()) + " meshes");
+  for (int j : rig_.meshJoint)
+    if (j < -1 || j >= int(rig_.skeleton.joints.size())) throw UsageError("RigPoser: mesh joint " + std::to_string(j) + " out of range");
   for (const TriMesh& mesh : meshes_) embeddings_.push_back(embedInTets(rig_.tets.V, rig_.tets.T, mesh.V));
   if (rig_.hasCentres()) centres_ = rig_.centres();
   if (restoreVolume) restore_.emplace(rig_.tets.V, rig_.tets.T, rig_.boneOfVertex());
@@ -75,9 +80,20 @@ RigPoser::Repairs RigPoser::skinTets(const std::vector<Eigen::Isometry3d>& world
   return repairs;
 }
 
-void RigPoser::carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const {
+void RigPoser::carry(const MatrixX3d& tets, const std::vector<Eigen::Isometry3d>& world,
+                     std::vector<MatrixX3d>& carried) const {
+  const std::vector<Eigen::Isometry3d> moved =
+      rig_.meshJoint.empty() ? std::vector<Eigen::Isometry3d>{} : restToPosed(rig_.skeleton, world);
   carried.resize(embeddings_.size());
-  for (std::size_t m = 0; m < embeddings_.size(); ++m) embeddings_[m].apply(tets, carried[m]);
+  for (std::size_t m = 0; m < embeddings_.size(); ++m) {
+    const int j = rig_.jointOfMesh(m);
+    if (j < 0) {
+      embeddings_[m].apply(tets, carried[m]);
+      continue;
+    }
+    const Eigen::Isometry3d& map = moved[std::size_t(j)];
+    carried[m] = (meshes_[m].V * map.linear().transpose()).rowwise() + map.translation().transpose();
+  }
 }
 
 }  // namespace vesalius::posing

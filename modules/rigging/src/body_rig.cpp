@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <optional>
@@ -346,6 +347,9 @@ BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBon
     p.end();
   });
   rigOfRegions(built, regions, bones.labels, options, p);
+  for (std::size_t j = 0; j < bones.labels.size(); ++j)
+    for (Label l : bones.labels[j])
+      if (const LabelEntry* entry = labels.table.find(l)) built.boneJoints[entry->name] = int(j);
   for (meshing::RegionSurface& r : regions) {
     const LabelEntry* entry = labels.table.find(Label(r.label));
     built.regionSurfaces.emplace_back((r.label == body || !entry ? "skin" : entry->name) + ".vtp", std::move(r.surface));
@@ -372,7 +376,18 @@ BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::Skele
     p.end();
   });
   rigOfRegions(built, regions, boneLabels, options, p);
+  for (const ReferenceTissue& t : reference.tissues)
+    if (const int j = built.rig.skeleton.find(jointOfBody(t.group)); j >= 0) built.boneJoints[t.name] = j;
   return built;
+}
+
+std::vector<int> meshJoints(const std::vector<std::string>& meshes, const std::map<std::string, int>& boneJoints) {
+  std::vector<int> joints;
+  for (const std::string& file : meshes) {
+    const auto found = boneJoints.find(std::filesystem::path(file).stem().string());
+    joints.push_back(found == boneJoints.end() ? -1 : found->second);
+  }
+  return joints;
 }
 
 }  // namespace vesalius::rigging

@@ -25,6 +25,13 @@ struct AnatomyRig {
   // The meshes the rig carries, as file names (their stems name them: "skin" is the body surface); the
   // paths of the files when read from a rig folder.
   std::vector<std::string> meshes;
+  // Empty, or one per mesh: the joint a bone mesh moves with rigidly (by the joint's rest-to-posed map, as
+  // the bone's own tet vertices do), -1 for a mesh the tets carry. Bones carried by the tets would bend
+  // where tissue next to them is squeezed.
+  std::vector<int> meshJoint;
+
+  // The joint mesh m moves with rigidly, -1 if the tets carry it.
+  int jointOfMesh(std::size_t m) const { return m < meshJoint.size() ? meshJoint[m] : -1; }
 
   const Eigen::MatrixXd& weights() const { return tets.vertexAttributes.real.at("weights"); }
   const Eigen::VectorXi& boneOfVertex() const { return tets.vertexAttributes.integer.at("bone"); }

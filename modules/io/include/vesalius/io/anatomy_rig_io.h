@@ -11,7 +11,9 @@
 //                      joint "name" and its rest world rotation, 9 numbers row by row
 //   DIR/meshes/*       the meshes at rest (mm, LPS): skin.<ext> (the body surface the rig was built from)
 //                      and the tissue meshes under their own file names; each is posed under its name
-// The tissue meshes are embedded in the tets (core/tet_embedding.h) when a pose run starts: that takes
+//   DIR/bone_meshes.txt  only when the rig has bone meshes (AnatomyRig::meshJoint): per bone mesh "file of
+//                      meshes/", a tab and the joint it moves with rigidly
+// The other meshes are embedded in the tets (core/tet_embedding.h) when a pose run starts: that takes
 // milliseconds, while the weights and centres stored here take the seconds.
 #pragma once
 
@@ -28,10 +30,11 @@
 
 namespace vesalius::io {
 
-// Writes rig.vtu, bones.txt, skeleton.bvh (and frames.txt) and meshes/<name> for each (name, mesh) as the
-// folder `dir`, whole or not at all (writeFolderAtomically: an existing folder is replaced only with
-// options.force, its parent must exist); names are made safe file names, their extensions pick the format;
-// two meshes whose names give one file are refused (BadInput naming `dir`).
+// Writes rig.vtu, bones.txt, skeleton.bvh (and frames.txt, bone_meshes.txt) and meshes/<name> for each
+// (name, mesh), in rig.meshJoint's order, as the folder `dir`, whole or not at all (writeFolderAtomically:
+// an existing folder is replaced only with options.force, its parent must exist); names are made safe file
+// names, their extensions pick the format; two meshes whose names give one file are refused (BadInput
+// naming `dir`).
 void writeAnatomyRig(const std::string& dir, const AnatomyRig& rig,
                      const std::vector<std::pair<std::string, TriMesh>>& meshes, const WriteOptions& options);
 

@@ -22,6 +22,9 @@ struct PoseQuality {
   double tetVolumeChangePct = 0;  // posed / rest volume of the whole tet mesh - 1, %
   double skinnedTetVolumeChangePct = 0;  // the same as skinned, before the restoration and the repair
   long leftOutside = 0;          // tissue vertices inside the rest tets that are not inside their posed tet
+  // Bone meshes moved rigidly (AnatomyRig::meshJoint): how far their vertices inside the rest tets are from
+  // where the tets would have carried them, mm; the tissue next to a bone is carried by the tets.
+  double boneMeshGapMax = 0, boneMeshGapMean = 0;
   VolumeRestoreResult restore;   // the restoration before these were measured (zeros if off)
   UntangleResult untangle;       // the repair after it (zeros if off)
 };
@@ -31,7 +34,8 @@ struct PoseQuality {
 // (TetLocator::locate's tolerance); it has left when its posed position, re-expressed in its posed tet, has
 // a weight below -1e-9 or none (a flat tet). The carrying (TetEmbedding::apply) keeps the weights under any
 // invertible tet map, inverted ones included, so this checks the carried meshes end to end and catches
-// flat tets.
+// flat tets. Bone meshes moved rigidly are not carried: their distance from the tets' carrying is measured
+// instead.
 class QualityMeter {
  public:
   static constexpr double kTolerance = 1e-9;
@@ -39,7 +43,7 @@ class QualityMeter {
   // meshes and embeddings: at rest, in rig.meshes order (RigPoser's); kept by reference.
   QualityMeter(const AnatomyRig& rig, const std::vector<TriMesh>& meshes, const std::vector<TetEmbedding>& embeddings);
 
-  long insideAtRest() const { return inside_; }  // tissue vertices inside the rest tets, over all meshes
+  long insideAtRest() const { return inside_; }  // tissue vertices inside the rest tets, over the carried meshes
 
   // posedTets: #V by 3 posed tet vertices; carried: per mesh, its #P by 3 posed vertices. The restoration
   // and repair fields are left zero for the caller.
@@ -49,6 +53,7 @@ class QualityMeter {
   MatrixX4i T_;
   Eigen::VectorXd restVolumes_;
   const std::vector<TetEmbedding>& embeddings_;
+  std::vector<bool> rigid_;  // per mesh: a bone mesh moved rigidly
   int skin_ = -1;
   MatrixX3i skinF_;
   double restSkinVolume_ = 0;

@@ -3,7 +3,8 @@
 // DQS, CoR or the co-rotational FEM reference), the restoration of the volume it loses or gains
 // (volume_restoration.h), the local repair of the tets it inverts or flattens (untangle_tets.h; both our
 // additions to the seed, on unless turned off; when the repair moved vertices, the volume its moves lost is
-// restored once more and what that flattened repaired) and one carrying of the embedded meshes. `vesalius pose`,
+// restored once more and what that flattened repaired) and one carrying of the embedded meshes (the bone
+// meshes moved rigidly with their joints instead). `vesalius pose`,
 // `vesalius patient --pose` and the viewer `vesalius-poser` all pose through it, so the viewer shows what
 // the commands write.
 // Deviation from §3.5: skinning and carrying run on the CPU (TBB inside the skinners), not on the GPU.
@@ -48,8 +49,10 @@ class RigPoser {
     UntangleResult untangle;
   };
   Repairs skinTets(const std::vector<Eigen::Isometry3d>& world, const std::string& method, MatrixX3d& tets) const;
-  // tets: #V by 3 posed tet vertices. Writes, per mesh, its #P by 3 carried vertices into `carried`.
-  void carry(const MatrixX3d& tets, std::vector<MatrixX3d>& carried) const;
+  // tets: #V by 3 posed tet vertices, skinned for `world` (skinTets). Writes, per mesh, its #P by 3 posed
+  // vertices into `carried`: a bone mesh (AnatomyRig::meshJoint) moved rigidly by its joint's rest-to-posed
+  // map, every other mesh carried by the tets.
+  void carry(const MatrixX3d& tets, const std::vector<Eigen::Isometry3d>& world, std::vector<MatrixX3d>& carried) const;
 
  private:
   AnatomyRig rig_;

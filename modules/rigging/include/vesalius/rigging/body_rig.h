@@ -22,6 +22,7 @@
 #include "vesalius/posing/skeleton_from_bones.h"
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,9 @@ struct BuiltRig {
   // bone label (labels only; empty otherwise).
   std::vector<std::pair<std::string, TriMesh>> regionSurfaces;
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
+  // The bones the regions were made of, by name (a reference's bone tissue, a label of the map), and the
+  // joint each moves with: a carried mesh of that name is a bone mesh (meshJoints).
+  std::map<std::string, int> boneJoints;
   double femoralHeadRadiusLeft = NAN, femoralHeadRadiusRight = NAN;  // mm (labels, reference)
 };
 
@@ -61,5 +65,9 @@ BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBon
 // reference: OpenSim's bone meshes (tissues grouped by OpenSim body) in a closed skin, mm LPS.
 BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::SkeletonFromBoneMeshesOptions& bones,
                           const RigOptions& options, const std::string& source, Progress* progress = nullptr);
+
+// meshes: file names (AnatomyRig::meshes). Returns AnatomyRig::meshJoint for them: the joint of the bone
+// named by a file's stem in boneJoints, -1 for every other mesh.
+std::vector<int> meshJoints(const std::vector<std::string>& meshes, const std::map<std::string, int>& boneJoints);
 
 }  // namespace vesalius::rigging
