@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iostream>
+
 namespace vesalius {
 namespace {
 
@@ -109,6 +112,28 @@ TEST(Tetrahedralize, CavityOfAHollowInsideABodyBelongsToTheBody) {
     if (centroid(m, t).norm() < 4.5) {
       ASSERT_EQ(labels(t), 1) << "cavity tet " << t;
     }
+}
+
+TEST(Tetrahedralize, APartTurnedInsideOutDoesNotClaimTheBodyAroundIt) {
+  // A bone of two parts, one of them a crumb turned inside out (a coarse voxel surface can give one): the
+  // crumb's material is not found by a ray leaving it into the body, so the bone's tets stay inside its
+  // outward part and the crumb holds body.
+  const Eigen::Vector3d at(10, 0, 0), crumbAt(-10, 8, 0);
+  const TriMesh body = test::sphere(3, 25.0),
+                bone = concatenate(test::sphere(3, 6.0, at), flipped(test::sphere(2, 2.0, crumbAt)));
+  // The bone listed first: its seeds come before the body's.
+  const TetMesh m = meshing::tetrahedralizeRegions({{bone, 2, "bone"}, {body, 1, "body"}});
+  const Eigen::VectorXi& labels = m.tetAttributes.integer.at(kLabel);
+  double farthest = 0;
+  for (Eigen::Index t = 0; t < m.T.rows(); ++t)
+    if (labels(t) == 2) farthest = std::max(farthest, (centroid(m, t) - at).norm());
+  const TriMesh outward = test::sphere(3, 6.0, at);
+  std::cout << "bone tets up to " << farthest << " mm from the bone's centre (radius 6), their volume "
+            << volumeOfLabel(m, 2) << " mm^3 of " << enclosedVolume(outward.V, outward.F) << '\n';
+  EXPECT_LT(farthest, 6.0);
+  EXPECT_NEAR(volumeOfLabel(m, 2), enclosedVolume(outward.V, outward.F), 1e-9 * enclosedVolume(outward.V, outward.F));
+  const double bodyVolume = enclosedVolume(body.V, body.F);
+  EXPECT_NEAR(tetVolumes(m.V, m.T).sum(), bodyVolume, 1e-9 * bodyVolume);
 }
 
 TEST(Tetrahedralize, PartsApartAreBothFilled) {

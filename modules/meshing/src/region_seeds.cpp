@@ -112,15 +112,19 @@ std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& 
   std::vector<RegionSeed> seeds;
   for (int p = 0; p < count; ++p) {
     const int surface = owner[triangles[p].front()];
-    RegionSeed seed = seedOfPart(all, tree, triangles[p], [](int) { return -1.0; });
-    seed.region = surface;
-    if (seed.clearance <= 0.0)
-      throw NumericalFailure("tetrahedralize: no point found inside a part of surface " +
-                             std::to_string(seed.region) + " (is it flat?)");
-    seeds.push_back(seed);
-    // The cavity of an inner shell (a hollow in a bone) belongs to the surface around the shell's
-    // surface (the body), if any; otherwise it stays empty.
-    if (enclosedVolume(all.V, all.F(triangles[p], Eigen::all)) >= 0.0) continue;
+    if (enclosedVolume(all.V, all.F(triangles[p], Eigen::all)) >= 0.0) {
+      RegionSeed seed = seedOfPart(all, tree, triangles[p], [](int) { return -1.0; });
+      seed.region = surface;
+      if (seed.clearance <= 0.0)
+        throw NumericalFailure("tetrahedralize: no point found inside a part of surface " +
+                               std::to_string(seed.region) + " (is it flat?)");
+      seeds.push_back(seed);
+      continue;
+    }
+    // An inner shell (a hollow in a bone): its material lies outside it, in the cell its outer shell's
+    // seed already names; a ray against its normals would leave the surface and could land in another
+    // cell (a crumb of a hand turned inside out seeded the forearm). Its cavity belongs to the surface
+    // around the shell's surface (the body), if any; otherwise it stays empty.
     RegionSeed cavity = seedOfPart(all, tree, triangles[p], [](int) { return 1.0; });
     cavity.region = cavity.clearance > 0.0 ? enclosingSurface(all, facesOf, surface, cavity.point) : -1;
     if (cavity.region >= 0) seeds.push_back(cavity);

@@ -15,9 +15,10 @@ struct RegionSeed {
 };
 
 // `all` holds every surface's triangles (closed, outward, not intersecting, parts not sharing vertices); `owner`
-// (#F) the surface index of each triangle. One seed per connected part; throws NumericalFailure if a part
-// has no room for one (a flat part). A part facing inward (the inner shell of a hollow) gets a second
-// seed inside its cavity, for the smallest other surface holding that point, if there is one.
+// (#F) the surface index of each triangle. One seed per connected part facing outward; throws
+// NumericalFailure if such a part has no room for one (a flat part). A part facing inward (the inner shell
+// of a hollow, whose material its outer shell's seed names) gets instead a seed inside its cavity, for the
+// smallest other surface holding that point, if there is one.
 std::vector<RegionSeed> regionSeeds(const TriMesh& all, const std::vector<int>& owner);
 
 // A partition into labelled regions (shared_label_surfaces.h): `all` holds each triangle once, `sides`

@@ -46,7 +46,7 @@ struct UntangleOptions {
   int maxRounds = 40;     // ε steps per region solve
   int maxIterations = 50;   // L-BFGS iterations per round
   int history = 8;        // L-BFGS pairs kept
-  int releaseRounds = 3;  // times the bone corners of tets still bad at maxRings are freed (0: never)
+  int releaseRounds = 6;  // times the bone corners of tets still bad at maxRings are freed (0: never)
 };
 
 struct UntangleResult {
