@@ -53,7 +53,9 @@ munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/munge.sock
 free_port() { /usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
 host=$(hostname -s)
 # The node as slurmd sees this machine (CPUs, sockets, cores, memory), under this host's name.
-node=$(slurmd -C | head -n 1 | sed "s/^NodeName=[^ ]*/NodeName=$host NodeAddr=127.0.0.1/")
+# sed reads slurmd's whole output: head would close the pipe after one line, and under pipefail slurmd's
+# SIGPIPE would fail the script.
+node=$(slurmd -C | sed -n "1{s/^NodeName=[^ ]*/NodeName=$host NodeAddr=127.0.0.1/;p}")
 cat > "$dir/slurm.conf" <<CONF
 ClusterName=vesalius-test
 SlurmctldHost=$host(127.0.0.1)
