@@ -70,8 +70,7 @@ void checkPoses(const Image& ct, const LabelMap& organs, const std::string& name
     std::cout << name << ", " << angles << ": " << q.inverted << " inverted tets, skin volume "
               << q.skinVolumeChangePct << " %, " << q.leftOutside << " of " << posed.tissueVerticesInsideAtRest
               << " tissue vertices left outside, " << q.untangle.badBefore << " tets repaired, " << q.untangle.badAfter
-              << " left bad (" << q.untangle.fixedBad << " with only bone corners), bone meshes up to "
-              << q.boneMeshGapMax << " mm from the tets' carrying (mean " << q.boneMeshGapMean << ")\n";
+              << " left bad (" << q.untangle.fixedBad << " with only bone corners)\n";
     EXPECT_EQ(q.inverted, 0);
     EXPECT_LT(std::abs(q.skinVolumeChangePct), 1.0);
     EXPECT_EQ(q.leftOutside, 0);
@@ -92,8 +91,9 @@ void checkPoses(const Image& ct, const LabelMap& organs, const std::string& name
       std::cout << "  " << femur << ": Dice of the re-posed label with the posed mesh " << dice
                 << ", mesh " << off << " mm from its rigid turn on average\n";
       EXPECT_GE(dice, 0.90) << femur;
-      // A bone mesh moves rigidly with its joint (AnatomyRig::meshJoint), not carried by the tets around it.
-      EXPECT_LT(off, 1e-9) << femur;
+      // Bone vertices move rigidly; the mesh's vertices lie in bone tets or, at its surface, in tets that
+      // share a face with the tissue around, within a rig voxel (6 mm) of the bone region.
+      EXPECT_LT(off, 2.0) << femur;
     }
   }
 }

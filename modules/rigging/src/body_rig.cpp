@@ -347,9 +347,6 @@ BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBon
     p.end();
   });
   rigOfRegions(built, regions, bones.labels, options, p);
-  for (std::size_t j = 0; j < bones.labels.size(); ++j)
-    for (Label l : bones.labels[j])
-      if (const LabelEntry* entry = labels.table.find(l)) built.boneJoints[entry->name] = int(j);
   for (meshing::RegionSurface& r : regions) {
     const LabelEntry* entry = labels.table.find(Label(r.label));
     built.regionSurfaces.emplace_back((r.label == body || !entry ? "skin" : entry->name) + ".vtp", std::move(r.surface));

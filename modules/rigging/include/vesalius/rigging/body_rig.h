@@ -45,8 +45,10 @@ struct BuiltRig {
   // bone label (labels only; empty otherwise).
   std::vector<std::pair<std::string, TriMesh>> regionSurfaces;
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
-  // The bones the regions were made of, by name (a reference's bone tissue, a label of the map), and the
-  // joint each moves with: a carried mesh of that name is a bone mesh (meshJoints).
+  // Reference only: its bone tissues by name and the joint each moves with; a carried mesh of that name is
+  // a bone mesh (meshJoints), moved rigidly. The bone regions are those meshes voxelized, coarser than
+  // them, so the tets would bend them. A rig of bone labels has none: its regions are its labels, and its
+  // meshes follow the tets as the re-posed scan does, so the two agree.
   std::map<std::string, int> boneJoints;
   double femoralHeadRadiusLeft = NAN, femoralHeadRadiusRight = NAN;  // mm (labels, reference)
 };
