@@ -69,6 +69,18 @@ void checkInputsAndOutputs(const CLI::App& command) {
         inputs.push_back({name, value});
     }
   }
+  // Whether `folder` is another output (a folder the command makes, e.g. --out) or inside one: a report
+  // written into --out is checked with --out's own folder.
+  const auto inAnotherOutput = [&](const fs::path& folder, const Named& self) {
+    std::error_code ec;
+    const fs::path within = fs::weakly_canonical(folder, ec);
+    for (const Named& other : outputs) {
+      if (&other == &self) continue;
+      const fs::path root = fs::weakly_canonical(other.path, ec);
+      if (std::mismatch(root.begin(), root.end(), within.begin(), within.end()).first == root.end()) return true;
+    }
+    return false;
+  };
   for (const Named& output : outputs) {
     // Said now, not when the first file is written after the work.
     struct stat info {};
@@ -76,6 +88,7 @@ void checkInputsAndOutputs(const CLI::App& command) {
       throw UsageError(output.path + ": " + output.option + " names a path too long for the file system");
     std::error_code ec;
     const fs::path folder = fs::path(output.path).has_parent_path() ? fs::path(output.path).parent_path() : fs::path(".");
+    if (inAnotherOutput(folder, output)) continue;
     if (!fs::is_directory(folder, ec))
       throw UsageError(output.path + ": " + output.option + " is in the folder " + folder.string() +
                        ", which does not exist");

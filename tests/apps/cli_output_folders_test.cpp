@@ -129,6 +129,26 @@ TEST(CliOutputFolders, SurfaceWithSeveralLabelsWritesAllOrNothing) {
   }
 }
 
+// A report inside the output folder the command makes: its folder does not exist before the run and is
+// not refused for that; a report into a folder that exists nowhere is.
+TEST(CliOutputFolders, AReportInsideTheOutputFolderIsWritten) {
+  const std::string dir = freshDir("report-inside"), out = dir + "/meshes";
+  writeLabels(dir + "/labels.nii.gz", 24, 3);
+  const std::vector<std::string> args{"surface", "--labels", dir + "/labels.nii.gz", "--out", out, "--label", "1",
+                                      "--label", "2", "--progress", "none", "--report"};
+  std::vector<std::string> inside = args;
+  inside.push_back(out + "/report.json");
+  const CommandResult r = runVesalius(inside);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/report.json"));
+  EXPECT_TRUE(fs::exists(out + "/part_1.vtp"));
+  std::vector<std::string> nowhere = args;
+  nowhere.push_back(dir + "/missing/report.json");
+  const CommandResult refused = runVesalius(nowhere);
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("which does not exist"), std::string::npos) << refused.err;
+}
+
 // `rig` with two --tissue meshes of one file name: refused when the second is written, after rig.vtu,
 // bones.txt, skeleton.bvh and the skin were.
 TEST(CliOutputFolders, RigWritesAllOrNothing) {
