@@ -55,6 +55,21 @@ std::map<std::string, std::string> contents(const fs::path& root) {
   return entries;
 }
 
+// `dir` holds what it held (`before`, from contents()): nothing left behind, nothing changed. Returns its
+// contents.
+std::map<std::string, std::string> expectAsBefore(const fs::path& dir, const std::map<std::string, std::string>& before) {
+  const std::map<std::string, std::string> after = contents(dir);
+  EXPECT_EQ(after.size(), before.size());
+  for (const auto& [path, bytes] : after) {
+    const auto was = before.find(path);
+    if (was == before.end())
+      ADD_FAILURE() << "left behind: " << path;
+    else
+      EXPECT_TRUE(was->second == bytes) << path << " changed";
+  }
+  return after;
+}
+
 // A folder someone had before the failing run: what --force must keep when the run fails.
 void writeOldFolder(const std::string& dir) {
   writeBytes(dir + "/bones.txt", "pelvis\nfemur_l\n");
@@ -72,15 +87,7 @@ void expectFailsLeavingAllAsItWas(const std::vector<std::string>& args, int code
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   expectContains(r.err, file);
   expectContains(r.err, problem);
-  const std::map<std::string, std::string> after = contents(dir);
-  EXPECT_EQ(after.size(), before.size());
-  for (const auto& [path, bytes] : after) {
-    const auto was = before.find(path);
-    if (was == before.end())
-      ADD_FAILURE() << "left behind: " << path;
-    else
-      EXPECT_TRUE(was->second == bytes) << path << " changed";
-  }
+  const std::map<std::string, std::string> after = expectAsBefore(dir, before);
   std::cout << r.err << "  " << before.size() << " entries before, " << after.size() << " after\n";
 }
 
@@ -219,15 +226,7 @@ TEST(CliOutputFolders, SigintWhileWritingLeavesTheOldFolder) {
   }
   if (!signalled) GTEST_SKIP() << "rig ended (status " << status << ") before its staging folder was seen";
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "wait status " << status;
-  const std::map<std::string, std::string> after = contents(dir);
-  EXPECT_EQ(after.size(), before.size());
-  for (const auto& [path, bytes] : after) {
-    const auto was = before.find(path);
-    if (was == before.end())
-      ADD_FAILURE() << "left behind: " << path;
-    else
-      EXPECT_TRUE(was->second == bytes) << path << " changed";
-  }
+  const std::map<std::string, std::string> after = expectAsBefore(dir, before);
   std::cout << "SIGINT while rig wrote " << out << ": " << after.size() << " entries after, " << before.size()
             << " before\n";
 }
