@@ -69,15 +69,23 @@ void checkInputsAndOutputs(const CLI::App& command) {
         inputs.push_back({name, value});
     }
   }
-  // Whether `folder` is another output (a folder the command makes, e.g. --out) or inside one: a report
-  // written into --out is checked with --out's own folder.
-  const auto inAnotherOutput = [&](const fs::path& folder, const Named& self) {
+  // Whether `folder` is on the path of another output: that output (a folder the command makes, e.g. --out),
+  // inside it, or a folder that holds it (made with it). A report written into --out, or beside a folder
+  // --out names, is checked with that output's own folder.
+  // Absolute and normal, without the empty last element that "x/y/.." normalises to ("x/").
+  const auto normal = [](const fs::path& p) {
     std::error_code ec;
-    const fs::path within = fs::weakly_canonical(folder, ec);
+    const fs::path n = fs::weakly_canonical(p, ec);
+    return n.has_filename() ? n : n.parent_path();
+  };
+  const auto onAnotherOutput = [&](const fs::path& folder, const Named& self) {
+    const fs::path a = normal(folder);
     for (const Named& other : outputs) {
       if (&other == &self) continue;
-      const fs::path root = fs::weakly_canonical(other.path, ec);
-      if (std::mismatch(root.begin(), root.end(), within.begin(), within.end()).first == root.end()) return true;
+      const fs::path b = normal(other.path);
+      if (std::mismatch(a.begin(), a.end(), b.begin(), b.end()).first == a.end() ||
+          std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end())
+        return true;
     }
     return false;
   };
@@ -88,7 +96,7 @@ void checkInputsAndOutputs(const CLI::App& command) {
       throw UsageError(output.path + ": " + output.option + " names a path too long for the file system");
     std::error_code ec;
     const fs::path folder = fs::path(output.path).has_parent_path() ? fs::path(output.path).parent_path() : fs::path(".");
-    if (inAnotherOutput(folder, output)) continue;
+    if (onAnotherOutput(folder, output)) continue;
     if (!fs::is_directory(folder, ec))
       throw UsageError(output.path + ": " + output.option + " is in the folder " + folder.string() +
                        ", which does not exist");
