@@ -1,4 +1,4 @@
-// Closed surfaces built in tests: an octahedron-based sphere.
+// Closed surfaces built in tests: a tetrahedron and an octahedron-based sphere.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -9,6 +9,16 @@
 #include <vector>
 
 namespace vesalius::test {
+
+// The tetrahedron with corners at the origin and `size` along each axis; outward.
+inline TriMesh tetrahedron(double size) {
+  TriMesh m;
+  m.V.resize(4, 3);
+  m.V << 0, 0, 0, size, 0, 0, 0, size, 0, 0, 0, size;
+  m.F.resize(4, 3);
+  m.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  return m;
+}
 
 // Sphere of `radius` around `centre`: an octahedron whose triangles are split in four `levels` times,
 // vertices pushed onto the sphere; outward, 8 * 4^levels triangles.

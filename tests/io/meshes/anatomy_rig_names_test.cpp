@@ -1,6 +1,7 @@
 // A rig folder's meshes are named after tissues from reference.json and label tables (`rig --reference`,
 // `rig --labels`): a name holding "../", an absolute path or a folder still gives a file inside meshes/
 // (issue 32, item 3), and nothing is written anywhere else.
+#include "test_shapes.h"
 #include "vesalius/core/anatomy_rig.h"
 #include "vesalius/io/anatomy_rig_io.h"
 
@@ -20,19 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TriMesh tetrahedronSurface(double size) {
-  TriMesh m;
-  m.V.resize(4, 3);
-  m.V << 0, 0, 0, size, 0, 0, 0, size, 0, 0, 0, size;
-  m.F.resize(4, 3);
-  m.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
-  return m;
-}
+using test::tetrahedron;
 
 // One tetrahedron, one bone: the smallest rig writeAnatomyRig takes.
 AnatomyRig oneTetRig() {
   AnatomyRig rig;
-  rig.tets.V = tetrahedronSurface(10).V;
+  rig.tets.V = tetrahedron(10).V;
   rig.tets.T.resize(1, 4);
   rig.tets.T << 0, 1, 2, 3;
   rig.tets.vertexAttributes.real["weights"] = Eigen::MatrixXd::Ones(4, 1);
@@ -53,11 +47,11 @@ TEST(AnatomyRigNames, TissueNamesNeverLeaveTheMeshesFolder) {
   fs::create_directories(dir.parent_path());
   const std::string absolute = (base / "absolute").string();
   const std::vector<std::pair<std::string, TriMesh>> meshes{
-      {"skin.obj", tetrahedronSurface(20)},
-      {"../../escaped.obj", tetrahedronSurface(1)},
-      {absolute + ".obj", tetrahedronSurface(2)},
-      {"bone/../../x.obj", tetrahedronSurface(3)},
-      {"..obj", tetrahedronSurface(4)}};
+      {"skin.obj", tetrahedron(20)},
+      {"../../escaped.obj", tetrahedron(1)},
+      {absolute + ".obj", tetrahedron(2)},
+      {"bone/../../x.obj", tetrahedron(3)},
+      {"..obj", tetrahedron(4)}};
   writeAnatomyRig(dir.string(), oneTetRig(), meshes, {});
 
   std::set<std::string> inMeshes;

@@ -1,6 +1,7 @@
 // An output never replaces an input (core/atomic_file.h: protectInput, checkNotAnInput): through the
 // writers that use writeAtomically, a reference folder's writer, and any name that reaches an input
 // (symlink, hard link, a file inside an input folder, a folder holding an input), --force or not.
+#include "test_shapes.h"
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
@@ -32,14 +33,7 @@ std::string readBytes(const std::string& path) {
   return s.str();
 }
 
-TriMesh tetrahedron(double size) {
-  TriMesh m;
-  m.V.resize(4, 3);
-  m.V << 0, 0, 0, size, 0, 0, 0, size, 0, 0, 0, size;
-  m.F.resize(4, 3);
-  m.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
-  return m;
-}
+using test::tetrahedron;
 
 // A folder of this process under the test output (ctest runs tests at the same time).
 std::string privateFolder() {
