@@ -251,4 +251,10 @@ TEST(PartialSkinRegistration, RejectsBadInputAndOptions) {
   o = {};
   o.registration.iterations = 0;
   EXPECT_THROW(registerSkinToPartialTarget(source.V, source.F, whole.V, whole.F, {}, o), UsageError);
+  o = {};
+  o.refinedStarts = 0;
+  EXPECT_THROW(registerSkinToPartialTarget(source.V, source.F, whole.V, whole.F, {}, o), UsageError);
+  o = {};
+  o.settledMm = 0;
+  EXPECT_THROW(registerSkinToPartialTarget(source.V, source.F, whole.V, whole.F, {}, o), UsageError);
 }

@@ -29,6 +29,9 @@ void checkOptions(const PartialSkinRegistrationOptions& o) {
   if (!(o.startsFrom >= 0 && o.startsFrom <= o.startsTo && o.startsTo <= 1))
     usage("the alignment starts must lie within the source's height, from <= to");
   if (o.alignIterations < 1) usage("alignment iterations must be at least 1");
+  if (o.refinedStarts < 1) usage("at least one alignment start must be refined");
+  if (o.refineIterations < 1) usage("refining iterations must be at least 1");
+  if (!(o.settledMm > 0 && std::isfinite(o.settledMm))) usage("the settling tolerance must be > 0");
   if (o.alignmentPoints < 3) usage("the alignment needs at least 3 points per side");
   if (!(o.reciprocalToleranceMm >= 0 && std::isfinite(o.reciprocalToleranceMm)))
     usage("the reciprocal tolerance must be >= 0");
@@ -98,13 +101,14 @@ SidePairs sidePairs(const AlignedSide& side, const fit::SimilarityTransform& T, 
 }
 
 // Step 1 from one start: similarity ICP of the source towards the target's skin vertices (sides[0]) and,
-// if given, its bones (sides[1]); each side weighs as much in the fit as the other.
+// if given, its bones (sides[1]); each side weighs as much in the fit as the other. At most `iterations`,
+// fewer once an iteration moves no matched source point by more than toleranceMm.
 Alignment icpFrom(const fit::SimilarityTransform& start, const std::vector<AlignedSide>& sides,
-                  const PartialSkinRegistrationOptions& options) {
+                  const PartialSkinRegistrationOptions& options, int iterations, double toleranceMm) {
   const double minCos = std::cos(options.registration.maxNormalAngleDeg * kPi / 180) - 1e-12;
   Alignment a;
   a.transform = start;
-  for (int it = 0; it < options.alignIterations; ++it) {
+  for (int it = 0; it < iterations; ++it) {
     std::vector<SidePairs> pairs;
     Eigen::Index rows = 0;
     for (const AlignedSide& side : sides) {
@@ -121,8 +125,11 @@ Alignment icpFrom(const fit::SimilarityTransform& start, const std::vector<Align
       w.segment(r, p.from.rows()).setConstant(1.0 / double(std::max<Eigen::Index>(p.from.rows(), 1)));
       r += p.from.rows();
     }
+    const fit::SimilarityTransform previous = a.transform;
     a.transform = fit::fitSimilarity(from, to, w, true);
     a.matchedCentroid = pairs[0].from.colwise().mean().transpose();
+    if ((a.transform.apply(pairs[0].from) - previous.apply(pairs[0].from)).rowwise().norm().maxCoeff() < toleranceMm)
+      break;
   }
   a.score = 0;
   for (std::size_t k = 0; k < sides.size(); ++k) {
@@ -142,7 +149,9 @@ SkinSide everyNth(const SkinSide& side, int count) {
   return {side.V(rows, Eigen::all), side.normals.rows() ? MatrixX3d(side.normals(rows, Eigen::all)) : MatrixX3d()};
 }
 
-// Step 1: the best of the starts along S.
+// Step 1: the best of the starts along S. Every start runs alignIterations; the refinedStarts best of them
+// then run on until they settle, and the best settled one wins. Two starts short of settling can score a
+// few per cent apart in either order, as rounding falls, though both are on their way to the same place.
 Alignment alignAlongBodyAxis(const MatrixX3d& Vs, const MatrixX3i& Fs, const SkinSide& skin,
                              const AlignmentBones* bones, const PartialSkinRegistrationOptions& options) {
   const SkinSide skinPoints = everyNth(skin, options.alignmentPoints);
@@ -153,7 +162,7 @@ Alignment alignAlongBodyAxis(const MatrixX3d& Vs, const MatrixX3i& Fs, const Ski
   const double targetLow = skin.V.col(2).minCoeff(), targetHigh = skin.V.col(2).maxCoeff();
   const Eigen::RowVector3d targetCentroid = skin.V.colwise().mean();
   const double targetMiddle = (targetLow + targetHigh) / 2, halfSlab = (targetHigh - targetLow) / 2;
-  Alignment best;
+  std::vector<Alignment> screened;
   for (int k = 0; k < options.alignmentStarts; ++k) {
     const double f = options.alignmentStarts == 1
                          ? (options.startsFrom + options.startsTo) / 2
@@ -170,11 +179,16 @@ Alignment alignAlongBodyAxis(const MatrixX3d& Vs, const MatrixX3i& Fs, const Ski
     slab /= count;
     fit::SimilarityTransform start;
     start.translation = Eigen::Vector3d(targetCentroid.x() - slab.x(), targetCentroid.y() - slab.y(), targetMiddle - height);
-    const Alignment a = icpFrom(start, sides, options);
+    screened.push_back(icpFrom(start, sides, options, options.alignIterations, 0));
+  }
+  std::sort(screened.begin(), screened.end(), [](const Alignment& a, const Alignment& b) { return a.score < b.score; });
+  if (screened.empty() || !std::isfinite(screened.front().score))
+    throw BadInput("", "partial skin registration: the source skin has no vertex at the heights tried");
+  Alignment best;
+  for (std::size_t k = 0; k < std::min(screened.size(), std::size_t(options.refinedStarts)); ++k) {
+    const Alignment a = icpFrom(screened[k].transform, sides, options, options.refineIterations, options.settledMm);
     if (a.score < best.score) best = a;
   }
-  if (!std::isfinite(best.score))
-    throw BadInput("", "partial skin registration: the source skin has no vertex at the heights tried");
   return best;
 }
 

@@ -19,8 +19,10 @@
 //     whole, Besl and McKay 1992), pairs with incompatible normals or farther than three times their median
 //     distance dropped (trimmed ICP, Chetverikov et al. 2002). Given bones both show (AlignmentBones), the
 //     target's bone points pull the source's bones in the same fit, weighing as much as the skin: a trunk
-//     is much the same tube at the waist and the chest, its pelvis is not. The start whose target skin
-//     (plus, given bones, bone points) ends nearest the source (mean distance) wins. Its rotation is applied
+//     is much the same tube at the waist and the chest, its pelvis is not. The refinedStarts starts whose
+//     target skin (plus, given bones, bone points) ends nearest the source (mean distance) then run on
+//     until they settle, and the nearest of them wins: unsettled, two starts bound for the same place can
+//     score a few per cent apart in either order as rounding falls on one machine or another. Its rotation is applied
 //     about the matched part of the source, its scale (the trunk's girth) only with scaleSource.
 //  2. Deformation: registerSkin's ICP with shape matching (skin_registration.h, steps 2-4) with the pairs
 //     above. Vertices no pair reaches follow their clusters' shape matching there.
@@ -54,6 +56,9 @@ struct PartialSkinRegistrationOptions {
   int alignmentStarts = 12;              // heights tried in step 1, >= 1
   double startsFrom = 0.2, startsTo = 0.85;  // ... spread over this part of the source's height, from its foot
   int alignIterations = 20;              // similarity-ICP iterations at each start, >= 1
+  int refinedStarts = 3;                 // the starts with the best scores then run on, >= 1,
+  int refineIterations = 300;            // ... for at most this many iterations, >= 1,
+  double settledMm = 0.01;               // ... until an iteration moves no matched point farther, > 0
   int alignmentPoints = 4000;            // step 1 pairs at most this many target points per side (evenly), >= 3
   double reciprocalToleranceMm = 10;     // forward pairs' reciprocal test, >= 0
   // Whether step 1 applies its similarity's scale to the source. Off: the source is only turned and moved
