@@ -400,19 +400,28 @@ void checkNrrdHeader(const std::string& path) {
   }
 }
 
-// The `Key = value` fields of a MetaImage header up to ElementDataFile, its last field.
+// The `Key = value` fields of a MetaImage header up to ElementDataFile, its last field. A header is text
+// with each key once: MetaIO reads C strings and keeps its own choice of a repeated key, so a NUL byte or
+// a second NDims would make it read other sizes than the ones checked here.
 std::map<std::string, std::string> metaImageFields(const std::string& path, std::uint64_t& headerBytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw BadInput(path, "cannot open");
   std::map<std::string, std::string> fields;
   std::string line;
   headerBytes = 0;
-  while (std::getline(in, line) && headerBytes < (1 << 20)) {
+  for (int number = 1; std::getline(in, line) && headerBytes < (1 << 20); ++number) {
     headerBytes += line.size() + 1;
+    const auto control = std::find_if(line.begin(), line.end(), [](char c) {
+      return (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f;
+    });
+    if (control != line.end())
+      throw BadInput(path, "MetaImage header line " + std::to_string(number) + " holds the control byte " +
+                               std::to_string(int(static_cast<unsigned char>(*control))) + " (the header must be text)");
     const std::size_t equals = line.find('=');
     if (equals == std::string::npos) continue;
     const std::string key = trimmed(line.substr(0, equals));
-    fields[key] = trimmed(line.substr(equals + 1));
+    if (!fields.emplace(key, trimmed(line.substr(equals + 1))).second)
+      throw BadInput(path, "MetaImage header gives " + key.substr(0, 40) + " twice (line " + std::to_string(number) + ")");
     if (key == "ElementDataFile") break;  // data follows
   }
   return fields;
@@ -531,16 +540,7 @@ void checkDeclaredVoxelBytes(const itk::ImageIOBase& io, const std::string& path
 itk::ImageIOBase::Pointer openImageIO(const std::string& path, bool wholeFile) {
   if (isNifti(path)) checkNiftiFile(path, wholeFile);
   if (isNrrd(path)) checkNrrdHeader(path);
-  if (isMetaImage(path)) {
-    checkMetaImageHeader(path);
-    try {
-      if (wholeFile) checkMetaImageBytes(path);
-    } catch (const BadInput&) {
-      throw;
-    } catch (const std::exception& error) {  // a size that is not a number, a data file that is missing
-      throw BadInput(path, std::string("MetaImage header or data file unreadable (") + error.what() + ")");
-    }
-  }
+  if (isMetaImage(path)) checkMetaImageHeader(path);
   if (!isNifti(path) && !isNrrd(path) && !isMetaImage(path)) checkDicomFileStructure(path);
   registerImageFactories();
   itk::ImageIOBase::Pointer io =
@@ -553,6 +553,15 @@ itk::ImageIOBase::Pointer openImageIO(const std::string& path, bool wholeFile) {
     throw BadInput(path, itkErrorReason(error));
   }
   if (wholeFile && (isNrrd(path) || isMetaImage(path))) checkDeclaredVoxelBytes(*io, path);
+  if (wholeFile && isMetaImage(path)) {
+    try {
+      checkMetaImageBytes(path);
+    } catch (const BadInput&) {
+      throw;
+    } catch (const std::exception& error) {  // a size that is not a number, a data file that is missing
+      throw BadInput(path, std::string("MetaImage header or data file unreadable (") + error.what() + ")");
+    }
+  }
   return io;
 }
 
@@ -612,37 +621,81 @@ T toStored(float value) {
   }
 }
 
+// Why `stored` bytes of `in`, a zlib or gzip stream, do not inflate to exactly `expected` bytes, or empty
+// if they do. Inflates into a small buffer: memory does not grow with the image.
+std::string checkInflates(std::istream& in, std::uint64_t stored, std::uint64_t expected) {
+  z_stream stream{};
+  if (inflateInit2(&stream, 15 + 32) != Z_OK) return "cannot be inflated (zlib failed to start)";
+  std::vector<unsigned char> input(1 << 16), output(1 << 16);
+  std::uint64_t produced = 0;
+  int status = Z_OK;
+  while (status == Z_OK) {
+    if (stream.avail_in == 0 && stored > 0) {
+      const std::uint64_t want = std::min<std::uint64_t>(stored, input.size());
+      in.read(reinterpret_cast<char*>(input.data()), std::streamsize(want));
+      if (std::uint64_t(in.gcount()) != want) break;
+      stored -= want;
+      stream.next_in = input.data();
+      stream.avail_in = uInt(want);
+    }
+    stream.next_out = output.data();
+    stream.avail_out = uInt(output.size());
+    status = inflate(&stream, Z_NO_FLUSH);
+    produced += output.size() - stream.avail_out;
+    if (status == Z_BUF_ERROR && stream.avail_in == 0 && stored > 0) status = Z_OK;  // more input to come
+    if (produced > expected) break;
+  }
+  const std::string reason = stream.msg ? stream.msg : "";
+  inflateEnd(&stream);
+  if (status == Z_STREAM_END && produced == expected) return "";
+  if (produced > expected)
+    return "inflates to more than the " + std::to_string(expected) + " bytes of voxels the header declares";
+  if (status == Z_STREAM_END)
+    return "inflates to " + std::to_string(produced) + " bytes, but the header declares " + std::to_string(expected);
+  return "is corrupt or cut short after inflating " + std::to_string(produced) + " of " + std::to_string(expected) +
+         " bytes" + (reason.empty() ? "" : " (" + reason + ")");
+}
+
 // Throws BadInput if a MetaImage file (.mha, or .mhd with its data file) holds fewer data bytes than its
 // header says: ITK reads such a file with a warning on stderr and zeros for the missing voxels.
 void checkMetaImageBytes(const std::string& path) {
   std::uint64_t headerBytes = 0;
   std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   if (!fields.count("ElementDataFile")) throw BadInput(path, "MetaImage header without ElementDataFile");
-  std::uint64_t expected = 0;
-  if (fields["CompressedData"] == "True") {
-    if (!fields.count("CompressedDataSize")) return;  // nothing to count against
-    expected = std::stoull(fields["CompressedDataSize"]);
-  } else {
-    static const std::map<std::string, std::uint64_t> kBytes = {
-        {"MET_CHAR", 1}, {"MET_UCHAR", 1}, {"MET_SHORT", 2}, {"MET_USHORT", 2}, {"MET_INT", 4}, {"MET_UINT", 4},
-        {"MET_LONG", 4}, {"MET_ULONG", 4}, {"MET_LONG_LONG", 8}, {"MET_ULONG_LONG", 8}, {"MET_FLOAT", 4},
-        {"MET_DOUBLE", 8}};
-    const auto type = kBytes.find(fields["ElementType"]);
-    if (type == kBytes.end()) return;
-    const auto channels = fields.find("ElementNumberOfChannels");
-    expected = type->second * (channels == fields.end() ? 1 : std::stoull(channels->second));
-    std::istringstream sizes(fields["DimSize"]);
-    for (std::uint64_t n; sizes >> n;) expected *= n;
-  }
+  static const std::map<std::string, std::uint64_t> kBytes = {
+      {"MET_CHAR", 1}, {"MET_UCHAR", 1}, {"MET_SHORT", 2}, {"MET_USHORT", 2}, {"MET_INT", 4}, {"MET_UINT", 4},
+      {"MET_LONG", 4}, {"MET_ULONG", 4}, {"MET_LONG_LONG", 8}, {"MET_ULONG_LONG", 8}, {"MET_FLOAT", 4},
+      {"MET_DOUBLE", 8}};
+  const auto type = kBytes.find(fields["ElementType"]);
+  if (type == kBytes.end()) return;  // ITK refuses it
+  const auto channels = fields.find("ElementNumberOfChannels");
+  std::uint64_t voxelBytes = type->second * (channels == fields.end() ? 1 : std::stoull(channels->second));
+  std::istringstream sizes(fields["DimSize"]);
+  for (std::uint64_t n; sizes >> n;) voxelBytes *= n;
+
   const std::string& dataFile = fields["ElementDataFile"];
   if (dataFile.rfind("LIST", 0) == 0 || dataFile.find('%') != std::string::npos) return;  // one file per slice
-  std::uint64_t actual = 0;
-  if (dataFile != "LOCAL")
-    actual = std::filesystem::file_size(std::filesystem::path(path).parent_path() / dataFile);
-  else if (const std::uint64_t size = std::filesystem::file_size(path); size > headerBytes)
-    actual = size - headerBytes;
-  if (actual < expected)
-    throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(expected) + " bytes");
+  const bool local = dataFile == "LOCAL";
+  const std::string dataPath = local ? path : (std::filesystem::path(path).parent_path() / dataFile).string();
+  const std::uint64_t offset = local ? headerBytes : 0, size = std::filesystem::file_size(dataPath);
+  const std::uint64_t actual = size > offset ? size - offset : 0;
+  if (fields["CompressedData"] != "True") {
+    if (actual < voxelBytes)
+      throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(voxelBytes) + " bytes");
+    return;
+  }
+  // ITK's MetaIO reads a corrupt or short compressed stream as a whole image (zeros where it failed) and,
+  // without CompressedDataSize, inflates a LOCAL file from its first byte, the header's.
+  if (!fields.count("CompressedDataSize")) {
+    if (local) throw BadInput(path, "compressed data without CompressedDataSize in the header (ITK cannot find where it starts)");
+  } else if (const std::uint64_t stored = std::stoull(fields["CompressedDataSize"]); actual < stored) {
+    throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(stored) + " compressed bytes");
+  }
+  const std::uint64_t stored = fields.count("CompressedDataSize") ? std::stoull(fields["CompressedDataSize"]) : actual;
+  std::ifstream in(dataPath, std::ios::binary);
+  in.seekg(std::streamoff(offset));
+  const std::string problem = checkInflates(in, stored, voxelBytes);
+  if (!problem.empty()) throw BadInput(path, "compressed data " + problem);
 }
 
 // ITK's NIfTI and MetaImage writers report a failed write (a full disk) on stderr only, so what was

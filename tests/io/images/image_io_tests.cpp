@@ -376,6 +376,54 @@ TEST(ImageIo, MetaImageDimSizeMustHoldNDimsPositiveWholeNumbers) {
   }
 }
 
+// ITK's MetaIO reads a compressed stream that is corrupt or short as a whole image (zeros where inflating
+// stopped) and, without CompressedDataSize, inflates a LOCAL file from its header; it keeps its own choice
+// of a repeated key and reads a header's numbers only up to a NUL byte (fuzz_mha: a bad free in MetaIO).
+// Each is one line naming the file; the file as written reads.
+TEST(ImageIo, CompressedMetaImageMustInflateToItsVoxelsAndItsHeaderBeText) {
+  const fs::path folder = freshOutputFolder("metaimage_compressed");
+  Image image;
+  image.geometry.size = {40, 30, 20};
+  image.fileType = PixelType::Int16;
+  image.values.resize(std::size_t(image.geometry.voxelCount()));
+  for (std::size_t n = 0; n < image.values.size(); ++n) image.values[n] = float((n * 7919) % 2001) - 1000;
+  const std::string written = (folder / "written.mha").string();
+  writeScan(written, image);
+  const Image back = readScan(written);
+  EXPECT_EQ(back.values, image.values);
+
+  std::ifstream in(written, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string dataLine = "ElementDataFile = LOCAL\n";
+  const std::size_t dataAt = bytes.find(dataLine) + dataLine.size();
+  ASSERT_NE(bytes.find("CompressedDataSize"), std::string::npos);
+  const std::string header = bytes.substr(0, dataAt), data = bytes.substr(dataAt);
+  ASSERT_GT(data.size(), 1000u);
+
+  std::string flipped = data;
+  flipped[flipped.size() / 2] = char(~flipped[flipped.size() / 2]);
+  std::string unsized = header;
+  unsized.erase(unsized.find("CompressedDataSize"), unsized.find('\n', unsized.find("CompressedDataSize")) -
+                                                        unsized.find("CompressedDataSize") + 1);
+  std::string twice = header;
+  twice.insert(0, "NDims = 2\n");
+  std::string nul = header;
+  nul.insert(nul.find("DimSize = ") + 12, std::string(1, '\0'));
+  const std::pair<std::string, std::string> cases[] = {
+      {header + flipped, "compressed data is corrupt"},
+      {header + data.substr(0, data.size() - 10), "data is cut short"},
+      {unsized + data, "compressed data without CompressedDataSize"},
+      {twice + data, "gives NDims twice"},
+      {nul + data, "holds the control byte 0"},
+  };
+  int n = 0;
+  for (const auto& [file, fragment] : cases) {
+    const fs::path path = folder / ("case" + std::to_string(n++) + ".mha");
+    writeBytes(path, file);
+    test::expectOneLineBadInput(path.string(), fragment, [&] { readScan(path.string()); });
+  }
+}
+
 // nifticlib takes a NIfTI-1 file's byte order from dim[0], not sizeof_hdr: a header with sizeof_hdr in
 // little-endian order and everything else big-endian declares 2000 x 2000 x 1000 shorts to nifticlib, and
 // must be refused as truncated before ITK allocates them (fuzz_nifti ran out of memory on one).
