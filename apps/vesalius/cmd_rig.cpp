@@ -109,7 +109,7 @@ void runSkinRig(const RigOptions& o) {
   const TriMesh asRead = io::readTriMesh(o.skin);
   const Skeleton skeleton = readSkeleton(o, asRead, makeHuman);
   const TriMesh skin = toLps(asRead, makeHuman);
-  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, skeleton, o.rig, o.skin, &progress);
+  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, skeleton, o.rig, o.skin, o.skeleton, &progress);
   finishRig(o, built, withTissues(o, {{"skin" + fileExtension(o.skin), skin}}, makeHuman), report);
 }
 

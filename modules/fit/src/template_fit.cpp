@@ -14,6 +14,7 @@
 #include "vesalius/fit/surface_projection.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -89,6 +90,25 @@ void takeMarkers(const TemplateFitInputs& in, TemplateFit& f) {
     std::tie(f.markers.attachmentMaterial, f.markers.attachmentTargets) =
         pointsWithTemplatePositions(*in.attachments, MarkerKind::Attachment, f, nullptr);
   }
+}
+
+// Landmarks on one line leave the placement's turn about that line undetermined (fitSimilarity refuses
+// them, without knowing their file): refused here naming the file they came from.
+void requireLandmarksOffOneLine(const MatrixX3d& points, const std::string& source) {
+  const MatrixX3d centred = points.rowwise() - points.colwise().mean();
+  const Eigen::Vector3d spread = Eigen::JacobiSVD<MatrixX3d>(centred).singularValues();
+  if (spread[1] <= 1e-6 * spread[0])
+    throw BadInput(source, "landmarks on one line: the " + std::to_string(points.rows()) +
+                               " paired for placing the template leave its turn about that line undetermined; "
+                               "give 3 or more that are not in a line");
+}
+
+void requirePlacingLandmarks(const TemplateFitInputs& in, const TemplateFitOptions& o, const FitMarkers& markers) {
+  if (!o.placeBySimilarity || markers.templateLandmarks.rows() < 3 || !in.scanLandmarks) return;
+  // Without template landmarks the scan's landmark file holds their template positions too.
+  requireLandmarksOffOneLine(markers.templateLandmarks,
+                             in.templateLandmarks ? in.templateLandmarks->source : in.scanLandmarks->source);
+  requireLandmarksOffOneLine(markers.scanLandmarks, in.scanLandmarks->source);
 }
 
 // Attachments hold the organ only if they remove its rigid motions (§3.3: three non-collinear points).
@@ -219,6 +239,7 @@ TemplateFit fitTemplate(const TemplateFitInputs& in, const TemplateFitOptions& o
     f.templ = *in.templateTets;
   }
   takeMarkers(in, f);
+  requirePlacingLandmarks(in, o, f.markers);
   if (in.attachments) requireThreeAttachments(f.markers, in.attachments->source, "");
   const Eigen::VectorXd s0 = place(o, f);
   if (in.bone) attachToBone(in, o, f);

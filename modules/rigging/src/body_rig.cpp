@@ -1,5 +1,6 @@
 #include "vesalius/rigging/body_rig.h"
 
+#include "vesalius/core/error.h"
 #include "vesalius/core/tet_locator.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/meshing/label_surface.h"
@@ -311,7 +312,7 @@ std::vector<meshing::RegionSurface> referenceRegions(const ReferenceAnatomy& ref
 }  // namespace
 
 BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const RigOptions& options,
-                         const std::string& source, Progress* progress) {
+                         const std::string& source, const std::string& skeletonSource, Progress* progress) {
   Progress none;
   Progress& p = progress ? *progress : none;
   BuiltRig built;
@@ -325,6 +326,9 @@ BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const Ri
   separateBones(built.rig.tets, int(skeleton.joints.size()), bone);
   holdEmptyCapsules(built.rig.tets, skeleton, options.capsules, bone);
   built.rig.boneJoint = compactBones(bone, int(skeleton.joints.size()));
+  if (built.rig.boneJoint.empty())
+    throw BadInput(skeletonSource, "no bone of the skeleton lies inside the skin " + source +
+                                       "; is the skeleton in the skin's space and place?");
   weighRig(built, bone, options, p);
   return built;
 }

@@ -53,9 +53,10 @@ struct BuiltRig {
   double femoralHeadRadiusLeft = NAN, femoralHeadRadiusRight = NAN;  // mm (labels, reference)
 };
 
-// skin: closed, mm LPS; skeleton: mm LPS. Throws BadInput naming `source` for an open or empty skin.
+// skin: closed, mm LPS; skeleton: mm LPS. Throws BadInput naming `source` (the skin's file) for an open or
+// empty skin, and `skeletonSource` for a skeleton none of whose bones lies inside the skin.
 BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const RigOptions& options,
-                         const std::string& source, Progress* progress = nullptr);
+                         const std::string& source, const std::string& skeletonSource, Progress* progress = nullptr);
 
 // labels: a map with the bones that posing::skeletonFromBones names (hips, sacrum, femurs, lumbar
 // vertebrae); the body is every labelled voxel made solid (closed, holes filled, its largest part), so a
