@@ -9,9 +9,11 @@
 #include "vesalius/core/mesh.h"
 #include "vesalius/core/skeleton.h"
 #include "vesalius/io/image_io.h"
+#include "vesalius/io/label_table_io.h"
 #include "vesalius/io/marker_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
+#include "vesalius/io/report.h"
 
 #include <gtest/gtest.h>
 
@@ -33,6 +35,18 @@ namespace {
 namespace fs = std::filesystem;
 
 // One writer: what it writes, the output's file name, and the call.
+// The files writing `path` makes: itself, a label map's table beside it, TetGen's .node, .ele and .face.
+std::vector<std::string> filesOf(const std::string& path) {
+  std::vector<std::string> files = labelTableSidecarPaths(path);
+  if (fileExtension(path) == ".ele") {
+    const std::string stem = path.substr(0, path.size() - 4);
+    for (const char* extension : {".node", ".ele", ".face"}) files.push_back(stem + extension);
+  } else {
+    files.push_back(path);
+  }
+  return files;
+}
+
 struct Case {
   std::string what, name;
   std::function<void(const std::string& path)> write;
@@ -83,7 +97,8 @@ class FullDisk : public ::testing::Test {
     return names;
   }
 
-  // Each case must throw BadInput naming its output (or, for a label map, one of its tables) and leave only the filler.
+  // Each case must throw BadInput naming its output (or another file it makes: a label map's table, TetGen's
+  // .node) and leave only the filler.
   void expectEachFails(const std::vector<Case>& cases, const char* situation) {
     for (const Case& c : cases) {
       const std::string path = (dir / c.name).string();
@@ -93,9 +108,9 @@ class FullDisk : public ::testing::Test {
       } catch (const BadInput& error) {
         const std::string message = error.what();
         std::cout << situation << ", " << c.what << ": " << message << "\n";
-        bool namesATable = false;
-        for (const std::string& table : labelTableSidecarPaths(path)) namesATable |= message.rfind(table + ": ", 0) == 0;
-        EXPECT_TRUE(message.rfind(path + ": ", 0) == 0 || namesATable)
+        bool namesAFile = false;
+        for (const std::string& file : filesOf(path)) namesAFile |= message.rfind(file + ": ", 0) == 0;
+        EXPECT_TRUE(namesAFile)
             << c.what << ": the message does not start with the output's name: " << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << c.what << ": more than one line";
       } catch (const std::exception& error) {
@@ -198,6 +213,18 @@ MarkerSet manyMarkers(int count) {
   return set;
 }
 
+LabelTable longTable(int count) {
+  LabelTable table;
+  for (int id = 1; id <= count; ++id) table.add(LabelEntry{Label(id), "structure_number_" + std::to_string(id), {}});
+  return table;
+}
+
+Report longReport(int count) {
+  Report report("fill");
+  for (int i = 0; i < count; ++i) report.metric("measure_" + std::to_string(i), 0.123456789 * i);
+  return report;
+}
+
 std::vector<Case> writers() {
   // Each output is far larger than the room left on the nearly full disk.
   static const Image image = noiseImage(64);           // 1 MB of float32 noise
@@ -207,6 +234,8 @@ std::vector<Case> writers() {
   static const TriMesh smallMesh = sheet(40);          // 1,600 vertices, 3,042 triangles (760 kB as ASCII STL)
   static const TetMesh tets = slab(40);                // 3,200 vertices, 9,126 tetrahedra
   static const Motion motion = longMotion(20000);      // about 1.5 MB of BVH frames
+  static const LabelTable table = longTable(20000);    // about 600 kB
+  static const Report report = longReport(20000);      // about 700 kB of JSON
   const auto asciiMesh = [] {
     MeshWriteOptions options;
     options.binary = false;
@@ -241,6 +270,11 @@ std::vector<Case> writers() {
       {"VTP mesh (writeTriMesh)", "skin.vtp", [](const std::string& p) { writeTriMesh(p, mesh); }},
       {"markups (writeMarkers)", "icp.mrk.json", [](const std::string& p) { writeMarkers(p, markers); }},
       {"fcsv markers (writeMarkers)", "icp.fcsv", [](const std::string& p) { writeMarkers(p, markers); }},
+      {"ITK-SNAP annotations (writeMarkers)", "icp.annot",
+       [](const std::string& p) { writeMarkers(p, markers, {}, &image.geometry); }},
+      {"TetGen tet mesh (writeTetMesh)", "tets.ele", [](const std::string& p) { writeTetMesh(p, tets); }},
+      {"label table (writeLabelTable)", "labels.tsv", [](const std::string& p) { writeLabelTable(p, table); }},
+      {"report (Report::write)", "report.json", [](const std::string& p) { report.write(p, {}); }},
   };
 }
 
@@ -262,8 +296,7 @@ TEST_F(FullDisk, TheSameWritersSucceedWithRoom) {
     const std::string path = (dir / c.name).string();
     EXPECT_NO_THROW(c.write(path)) << c.what;
     EXPECT_TRUE(fs::exists(path)) << c.what;
-    fs::remove(path);
-    for (const std::string& table : labelTableSidecarPaths(path)) fs::remove(table);
+    for (const std::string& file : filesOf(path)) fs::remove(file);
   }
   EXPECT_TRUE(listing().empty());
 }
