@@ -22,8 +22,9 @@
 //     is much the same tube at the waist and the chest, its pelvis is not. The refinedStarts starts whose
 //     target skin (plus, given bones, bone points) ends nearest the source (mean distance) then run on
 //     until they settle, and the nearest of them wins: unsettled, two starts bound for the same place can
-//     score a few per cent apart in either order as rounding falls on one machine or another. Its rotation is applied
-//     about the matched part of the source, its scale (the trunk's girth) only with scaleSource.
+//     score a few per cent apart in either order as rounding falls on one machine or another. Its
+//     rotation is applied about the matched part of the source, its scale (the trunk's girth) only with
+//     scaleSource.
 //  2. Deformation: registerSkin's ICP with shape matching (skin_registration.h, steps 2-4) with the pairs
 //     above. Vertices no pair reaches follow their clusters' shape matching there.
 //  3. Continuation. The vertices a pair reached in the last iteration are the pulled ones: the skin the
