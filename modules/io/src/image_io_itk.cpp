@@ -20,6 +20,7 @@
 #include <gdcm-3.0/gdcmTrace.h>  // GDCM as ITK ships it; its own headers include one another by quotes
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -29,6 +30,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <type_traits>
 
@@ -103,7 +105,7 @@ struct NiftiLayout {
   int axes = 0;                    // dim[0], at most 3 counted
   std::array<double, 3> pixdim{};  // pixdim[1..axes]: voxel spacing
   std::uint64_t dataEnd = 0;       // vox_offset + voxel bytes; 0 when the voxel size is unknown
-  std::string nonFinite;           // the first transform field in use that is NaN or infinite, or empty
+  std::string unusableTransform;   // the first transform field in use that is NaN, infinite or absurd, or empty
   int datatype = 0;                // NIFTI_TYPE_*: 16 float32, 64 float64
   std::uint64_t voxOffset = 0;
   std::array<std::int64_t, 3> size{{1, 1, 1}};
@@ -150,8 +152,8 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
   const auto dim = [&](int n) {
     return double(headerField<DimType>(header, dimAt + n * sizeof(DimType), swapped));
   };
+  if (!(dim(0) >= 1 && dim(0) <= 7)) return layout;  // a NIfTI-2 dim is 64 bits: compared before the cast
   const int dimensions = int(dim(0));
-  if (dimensions < 1 || dimensions > 7) return layout;
   layout.axes = std::min(dimensions, 3);
   for (int n = 1; n <= dimensions && layout.badDim == 0; ++n)
     if (dim(n) < 1) layout.badDim = n;
@@ -168,27 +170,47 @@ NiftiLayout niftiLayout(const unsigned char* header, bool swapped, std::size_t d
   // A negative vox_offset is read from the header's end: counted from 0, the data's end is still a bound.
   if (bitpix > 0) layout.dataEnd = byteCount(std::max(offset, 0.0) + voxels * bitpix / 8);
   layout.voxOffset = offset >= 0 ? byteCount(offset) : 0;
-  for (int n = 0; n < layout.axes; ++n) layout.size[n] = std::int64_t(std::max(dim(n + 1), 1.0));
+  // Clamped below 2^63 before the cast; a size that large fails the byte count anyway.
+  for (int n = 0; n < layout.axes; ++n) layout.size[n] = std::int64_t(std::clamp(dim(n + 1), 1.0, 9e18));
   layout.swapped = swapped;
   return layout;
 }
 
-// A qform (quatern_b..d, qoffset_x..z) or sform (srow_x..z) in use that holds NaN or infinity: nifticlib
-// turns such a qform into zeros without a word (a wrong origin), and VNL aborts the process on such an
-// sform. `codeAt` is qform_code; sform_code, the quaternion, the offsets and the rows follow it.
+std::string shortNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// Millimetres no scan reaches: beyond them a float matrix's squares overflow, and VNL's SVD of ITK's NIfTI
+// orientation loops for ever (fuzz_nifti: an srow entry of -1.7e38).
+constexpr double kLargestNiftiMm = 1e9;
+
+// A qform (quatern_b..d, qoffset_x..z) or sform (srow_x..z) in use that holds NaN, infinity or a value
+// beyond kLargestNiftiMm: nifticlib turns a non-finite qform into zeros without a word (a wrong origin),
+// and VNL aborts or loops on such an sform. `codeAt` is qform_code; sform_code, the quaternion, the
+// offsets and the rows follow it. Returns the field and what is wrong with it, or empty.
 template <class CodeType, class ValueType>
-std::string nonFiniteTransformField(const unsigned char* header, bool swapped, std::size_t codeAt) {
+std::string unusableTransformField(const unsigned char* header, bool swapped, std::size_t codeAt) {
   const std::size_t quaternAt = codeAt + 2 * sizeof(CodeType);
   const bool qform = headerField<CodeType>(header, codeAt, swapped) > 0;
   const bool sform = headerField<CodeType>(header, codeAt + sizeof(CodeType), swapped) > 0;
   static const char* const kQformNames[] = {"quatern_b", "quatern_c", "quatern_d", "qoffset_x", "qoffset_y", "qoffset_z"};
   static const char* const kRows[] = {"srow_x", "srow_y", "srow_z"};
+  const auto problem = [](double value) -> std::string {
+    if (!std::isfinite(value)) return " is not a finite number";
+    if (std::abs(value) > kLargestNiftiMm) return " is " + shortNumber(value) + ", beyond ±1e9 mm";
+    return {};
+  };
   for (int n = 0; qform && n < 6; ++n)
-    if (!std::isfinite(double(headerField<ValueType>(header, quaternAt + n * sizeof(ValueType), swapped))))
-      return kQformNames[n];
+    if (const std::string p = problem(double(headerField<ValueType>(header, quaternAt + n * sizeof(ValueType), swapped)));
+        !p.empty())
+      return kQformNames[n] + p;
   for (int n = 0; sform && n < 12; ++n)
-    if (!std::isfinite(double(headerField<ValueType>(header, quaternAt + (6 + n) * sizeof(ValueType), swapped))))
-      return std::string(kRows[n / 4]) + "[" + std::to_string(n % 4) + "]";
+    if (const std::string p =
+            problem(double(headerField<ValueType>(header, quaternAt + (6 + n) * sizeof(ValueType), swapped)));
+        !p.empty())
+      return std::string(kRows[n / 4]) + "[" + std::to_string(n % 4) + "]" + p;
   return {};
 }
 
@@ -214,21 +236,15 @@ std::optional<NiftiLayout> parseNiftiHeader(const unsigned char* header, int len
   // the magic says (one without "n+1" as ANALYZE 7.5): the data's end is always a bound.
   if (size == 348) {
     NiftiLayout layout = niftiLayout<std::int16_t, float, float>(header, swapped, 40, 72, 76, 108);
-    layout.nonFinite = nonFiniteTransformField<std::int16_t, float>(header, swapped, 252);
+    layout.unusableTransform = unusableTransformField<std::int16_t, float>(header, swapped, 252);
     return layout;
   }
   if (size == 540 && length >= 540) {
     NiftiLayout layout = niftiLayout<std::int64_t, double, std::int64_t>(header, swapped, 16, 14, 104, 168);
-    layout.nonFinite = nonFiniteTransformField<std::int32_t, double>(header, swapped, 344);
+    layout.unusableTransform = unusableTransformField<std::int32_t, double>(header, swapped, 344);
     return layout;
   }
   return std::nullopt;
-}
-
-std::string shortNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
 }
 
 using GzFile = std::unique_ptr<std::remove_pointer_t<gzFile>, decltype(&gzclose)>;
@@ -295,12 +311,12 @@ void checkNiftiFile(const std::string& path, bool wholeFile) {
   // nifticlib reads a zero or negative size as 1 without a word.
   if (layout->badDim > 0)
     throw BadInput(path, "dim[" + std::to_string(layout->badDim) + "] is not a positive size");
-  if (!layout->nonFinite.empty())
-    throw BadInput(path, "the orientation field " + layout->nonFinite + " is not a finite number");
+  if (!layout->unusableTransform.empty())
+    throw BadInput(path, "the orientation field " + layout->unusableTransform);
   for (int axis = 0; axis < layout->axes; ++axis)
-    if (!(std::isfinite(layout->pixdim[axis]) && layout->pixdim[axis] > 0))
+    if (!(std::isfinite(layout->pixdim[axis]) && layout->pixdim[axis] > 0 && layout->pixdim[axis] <= kLargestNiftiMm))
       throw BadInput(path, "voxel spacing pixdim[" + std::to_string(axis + 1) + "] is " +
-                               shortNumber(layout->pixdim[axis]) + " (must be positive)");
+                               shortNumber(layout->pixdim[axis]) + " (must be positive, at most 1e9 mm)");
   if (!wholeFile || layout->dataEnd == 0) return;
   const bool compressed = !gzdirect(file.get());
   const std::uint64_t size = compressed ? std::uint64_t(length) + remainingBytes(file.get(), path)
@@ -357,8 +373,14 @@ void checkGeometryNumbers(const std::string& path, const std::string& field, con
                                (positive ? " (each must be a positive number of mm)" : " (must be a finite number)"));
 }
 
-// `key: value` lines of a NRRD header up to its blank line (`#` lines are comments); `headerBytes`: where
-// the data of a file with attached data begins.
+std::string lowerCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+// `key: value` lines of a NRRD header up to its blank line (`#` lines are comments), keys in lower case:
+// NrrdIO reads field names and enum values (the encoding) in any case, so "encOding: gzip" is gzip to it.
+// `headerBytes`: where the data of a file with attached data begins.
 std::map<std::string, std::string> nrrdFields(const std::string& path, std::uint64_t& headerBytes) {
   std::map<std::string, std::string> fields;
   headerBytes = 0;
@@ -368,12 +390,21 @@ std::map<std::string, std::string> nrrdFields(const std::string& path, std::uint
   int lines = 0;
   while (std::getline(in, line) && ++lines < 4096) {
     headerBytes += line.size() + 1;
+    // NrrdIO copies a line it cannot parse into a fixed buffer, NUL bytes and all: a long one smashes its
+    // stack. Key/value pairs (`key:=value`, Slicer's long segmentation parameters) are stored, not parsed.
+    if (line.size() > 512 && line[0] != '#' && line.find(":=") == std::string::npos)
+      throw BadInput(path, "NRRD header line " + std::to_string(lines) + " holds " + std::to_string(line.size()) +
+                               " characters (a field line holds at most 512)");
+    if (const std::size_t nul = line.find('\0'); nul != std::string::npos) line.resize(nul);  // NrrdIO reads C strings
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) break;
     if (line[0] == '#') continue;
     const std::size_t colon = line.find(": ");
     if (colon == std::string::npos || line.compare(colon, 3, ":=") == 0) continue;
-    fields[trimmed(line.substr(0, colon))] = trimmed(line.substr(colon + 2));
+    const std::string key = lowerCase(trimmed(line.substr(0, colon)));
+    // NrrdIO reads the first of a repeated field, the checks here would read the last.
+    if (!fields.emplace(key, trimmed(line.substr(colon + 2))).second)
+      throw BadInput(path, "NRRD header gives '" + key.substr(0, 40) + "' twice");
   }
   return fields;
 }
@@ -381,6 +412,15 @@ std::map<std::string, std::string> nrrdFields(const std::string& path, std::uint
 void checkNrrdHeader(const std::string& path) {
   std::uint64_t headerBytes = 0;
   std::map<std::string, std::string> fields = nrrdFields(path, headerBytes);
+  // NrrdIO copies a field naming one of its words (a type, an encoding, a space) into a short buffer: a
+  // long one smashes its stack (fuzz_nrrd).
+  for (const char* key : {"type", "encoding", "endian", "space", "kinds", "centers", "centerings"})
+    if (fields.count(key) && fields[key].size() > 100)
+      throw BadInput(path, std::string("NRRD field '") + key + "' holds " + std::to_string(fields[key].size()) +
+                               " characters (at most 100)");
+  static const std::set<std::string> kEncodings = {"raw", "txt", "text", "ascii", "hex", "gz", "gzip", "bz2", "bzip2"};  // NrrdIO's
+  if (fields.count("encoding") && !kEncodings.count(lowerCase(fields["encoding"])))
+    throw BadInput(path, "NRRD encoding '" + fields["encoding"].substr(0, 40) + "' is none of raw, text, hex, gzip, bzip2");
   int dimension = 0;
   if (fields.count("dimension")) dimension = std::atoi(fields["dimension"].c_str());
   // A 4-D file's non-spatial axis (vector components) has the spacing "nan" by the NRRD standard.
@@ -478,7 +518,7 @@ std::optional<StoredData> nrrdStoredData(const std::string& path) {
   static const std::map<std::string, double> kExpansion = {
       {"raw", 1}, {"hex", 1}, {"txt", 8}, {"text", 8}, {"ascii", 8}, {"gz", 1032}, {"gzip", 1032},
       {"bz2", 1.2e6}, {"bzip2", 1.2e6}};
-  const auto expansion = kExpansion.find(fields["encoding"]);
+  const auto expansion = kExpansion.find(lowerCase(fields["encoding"]));
   if (expansion == kExpansion.end()) return std::nullopt;
   StoredData stored;
   stored.expansion = expansion->second;

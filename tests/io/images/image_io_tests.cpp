@@ -424,6 +424,32 @@ TEST(ImageIo, CompressedMetaImageMustInflateToItsVoxelsAndItsHeaderBeText) {
   }
 }
 
+// Found by fuzz_nrrd and fuzz_nifti: NrrdIO reads field names in any case, so "encOding: gzip" declaring
+// 8 GB over a few bytes must meet the same check as "encoding: gzip"; an sform entry of -1.7e38 made VNL's
+// SVD of ITK's orientation loop for ever. Each is one line naming the file.
+TEST(ImageIo, NrrdFieldsInAnyCaseAndNiftiOrientationsBeyondAnyScanAreRefused) {
+  const fs::path folder = freshOutputFolder("header_cases");
+  const fs::path nrrd = folder / "mixed_case.nrrd";
+  writeBytes(nrrd, "NRRD0004\ntype: short\ndimension: 3\nsizes: 2000 2000 1000\nEndian: little\nencOding: GZIP\n\n" +
+                       std::string(600, '\0'));
+  test::expectOneLineBadInput(nrrd.string(), "header declares 8000000000 bytes of voxels", [&] { readScan(nrrd.string()); });
+
+  Image image;
+  image.geometry.size = {4, 3, 2};
+  image.values.assign(24, 1.0f);
+  const fs::path nifti = folder / "huge_srow.nii";
+  writeScan(nifti.string(), image);
+  std::fstream file(nifti, std::ios::in | std::ios::out | std::ios::binary);
+  const std::int16_t code = 1;
+  const float huge = -1.7e38f;
+  file.seekp(254);  // sform_code
+  file.write(reinterpret_cast<const char*>(&code), sizeof code);
+  file.seekp(284);  // srow_x[1]
+  file.write(reinterpret_cast<const char*>(&huge), sizeof huge);
+  file.close();
+  test::expectOneLineBadInput(nifti.string(), "the orientation field srow_x[1] is -1.7e+38, beyond", [&] { readScan(nifti.string()); });
+}
+
 // nifticlib takes a NIfTI-1 file's byte order from dim[0], not sizeof_hdr: a header with sizeof_hdr in
 // little-endian order and everything else big-endian declares 2000 x 2000 x 1000 shorts to nifticlib, and
 // must be refused as truncated before ITK allocates them (fuzz_nifti ran out of memory on one).
