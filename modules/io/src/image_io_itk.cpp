@@ -726,12 +726,12 @@ void checkMetaImageBytes(const std::string& path) {
   }
   // ITK's MetaIO reads a corrupt or short compressed stream as a whole image (zeros where it failed) and,
   // without CompressedDataSize, inflates a LOCAL file from its first byte, the header's.
-  if (!fields.count("CompressedDataSize")) {
-    if (local) throw BadInput(path, "compressed data without CompressedDataSize in the header (ITK cannot find where it starts)");
-  } else if (const std::uint64_t stored = std::stoull(fields["CompressedDataSize"]); actual < stored) {
+  const bool sized = fields.count("CompressedDataSize") > 0;
+  if (!sized && local)
+    throw BadInput(path, "compressed data without CompressedDataSize in the header (ITK cannot find where it starts)");
+  const std::uint64_t stored = sized ? std::stoull(fields["CompressedDataSize"]) : actual;
+  if (actual < stored)
     throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(stored) + " compressed bytes");
-  }
-  const std::uint64_t stored = fields.count("CompressedDataSize") ? std::stoull(fields["CompressedDataSize"]) : actual;
   std::ifstream in(dataPath, std::ios::binary);
   in.seekg(std::streamoff(offset));
   const std::string problem = checkInflates(in, stored, voxelBytes);
