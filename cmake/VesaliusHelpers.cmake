@@ -23,6 +23,8 @@ function(vesalius_module)
   target_link_libraries(vesalius_${M_NAME} PUBLIC ${M_PUBLIC_LIBS} PRIVATE ${M_PRIVATE_LIBS})
   set_target_properties(vesalius_${M_NAME} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   vesalius_target_flags(vesalius_${M_NAME})
+  install(TARGETS vesalius_${M_NAME} LIBRARY DESTINATION ${VESALIUS_LIB_INSTALL_DIR}
+                                     ARCHIVE DESTINATION ${VESALIUS_LIB_INSTALL_DIR})
 endfunction()
 
 # vesalius_test(NAME <t> SOURCES ... LIBS ... LABELS ... [LONG])

@@ -5,6 +5,7 @@
 #include "full_body_sources.h"
 #include "patient_outputs.h"
 #include "posing_session.h"
+#include "shipped_data.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/image_io.h"
@@ -29,7 +30,7 @@ namespace vesalius::cli {
 namespace {
 
 struct PatientOptions {
-  std::string scan, organs, organTable, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
+  std::string scan, organs, organTable, out, templates = shippedTemplates("organs");
   std::string pose, motion;  // joint angles, or a BVH motion and its frame
   int frame = 0;
   std::string reference;     // a full-body reference folder; empty: built from the shipped sources
@@ -66,12 +67,7 @@ void checkPoseJoints(const PatientOptions& o) {
 // (patient/whole_model.h).
 ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
   if (!o.reference.empty()) return io::readReferenceAnatomy(o.reference);
-  const std::string skeleton = VESALIUS_DATA_DIR "/body/default.mhskel";
-  const patient::FullBodySources sources =
-      readFullBodySources(VESALIUS_DATA_DIR "/body/shapes/mh_neutral_body.obj", skeleton, "",
-                          VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim",
-                          o.referenceOrgans ? kShippedReferenceOrgans : "");
-  return patient::buildFullBodyReference(sources, skeleton).anatomy;
+  return shippedFullBodyReference(o.referenceOrgans);
 }
 
 void runPatient(const PatientOptions& o) {
@@ -244,9 +240,9 @@ void addPatientCommand(CLI::App& app) {
 
 void addDemoCommand(CLI::App& app) {
   auto o = std::make_shared<PatientOptions>();
-  o->scan = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/example_ct.nii.gz";
-  o->organs = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz";
-  o->organTable = VESALIUS_DATA_DIR "/ct-abdomen-pelvis/labels_total_v1.tsv";
+  o->scan = shippedData("ct-abdomen-pelvis/example_ct.nii.gz");
+  o->organs = shippedData("ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz");
+  o->organTable = shippedData("ct-abdomen-pelvis/labels_total_v1.tsv");
   o->out = "demo-output";
   CLI::App* cmd = app.add_subcommand(
       "demo", "The main job on the shipped example CT: `vesalius patient` on it and its TotalSegmentator labels");

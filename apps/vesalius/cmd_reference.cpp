@@ -5,6 +5,7 @@
 // into that reference's skin (patient/reference_organs.h), the folder shipped as templates/reference-organs/.
 #include "common.h"
 #include "full_body_sources.h"
+#include "shipped_data.h"
 
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
@@ -37,7 +38,7 @@ struct FullBodyOptions {
 };
 
 struct OrgansOptions {
-  std::string scan, organs, organTable, reference, out, templates = VESALIUS_TEMPLATE_DIR "/organs";
+  std::string scan, organs, organTable, reference, out, templates = shippedTemplates("organs");
   patient::ReferenceOrgansOptions method;
   CommonOptions common;
 };
@@ -132,12 +133,7 @@ void runOrgans(const OrgansOptions& o) {
     reference = io::readReferenceAnatomy(o.reference);
   } else {
     progress.begin("reference", "the full-body reference");
-    const std::string skeleton = VESALIUS_DATA_DIR "/body/default.mhskel";
-    reference = patient::buildFullBodyReference(
-                    readFullBodySources(VESALIUS_DATA_DIR "/body/shapes/mh_neutral_body.obj", skeleton, "",
-                                        VESALIUS_DATA_DIR "/skeleton-opensim/Rajagopal2016.osim"),
-                    skeleton)
-                    .anatomy;
+    reference = shippedFullBodyReference(false);
     progress.end();
   }
   const patient::ReferenceOrgans made =

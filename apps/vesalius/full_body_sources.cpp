@@ -1,5 +1,6 @@
 // The full-body reference's files read (full_body_sources.h).
 #include "full_body_sources.h"
+#include "shipped_data.h"
 
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/makehuman_uv.h"
@@ -55,6 +56,15 @@ std::vector<patient::OrganTemplate> readOrganTemplates(const std::string& folder
   }
   std::sort(templates.begin(), templates.end(), [](const auto& a, const auto& b) { return a.organ < b.organ; });
   return templates;
+}
+
+ReferenceAnatomy shippedFullBodyReference(bool withOrgans) {
+  const std::string skeleton = shippedData("body/default.mhskel");
+  const patient::FullBodySources sources =
+      readFullBodySources(shippedData("body/shapes/mh_neutral_body.obj"), skeleton, "",
+                          shippedData("skeleton-opensim/Rajagopal2016.osim"),
+                          withOrgans ? shippedTemplates("reference-organs") : "");
+  return patient::buildFullBodyReference(sources, skeleton).anatomy;
 }
 
 }  // namespace vesalius::cli

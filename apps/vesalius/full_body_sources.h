@@ -24,7 +24,9 @@ patient::FullBodySources readFullBodySources(const std::string& skin, const std:
 // file's stem, sorted by name. Throws BadInput naming a folder that is not one.
 std::vector<patient::OrganTemplate> readOrganTemplates(const std::string& folder);
 
-// The shipped organs and muscles of the full-body reference, made for the shipped MakeHuman body.
-inline const char* kShippedReferenceOrgans = VESALIUS_TEMPLATE_DIR "/reference-organs";
+// The full-body reference built from the shipped sources (shipped_data.h): MakeHuman's neutral body and
+// default rig, OpenSim's Rajagopal 2016 model and, with organs, the organs and muscles made for that body
+// (templates/reference-organs/), as `vesalius reference full-body` builds it.
+ReferenceAnatomy shippedFullBodyReference(bool withOrgans);
 
 }  // namespace vesalius::cli
