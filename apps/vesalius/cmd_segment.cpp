@@ -1,6 +1,7 @@
 // vesalius segment: tissue classes of a scan as a label map with its label table and a slice picture.
 #include "common.h"
 
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/mri_tissues.h"
@@ -59,10 +60,13 @@ void runSegment(const SegmentOptions& o) {
     auto timer = report.time("segment");
     labels = classify(scan, o, progress);
   }
-  io::writeLabelMap(o.out, labels, o.common.writeOptions());
-  viz::OverlayOptions overlay;
-  overlay.write = o.common.writeOptions();
-  viz::writeSliceOverlayPng(scan, labels, png, overlay);
+  // The labels, their tables and their picture all or none: a picture that fails leaves no labels.
+  std::vector<std::string> outputs = io::labelMapFiles(o.out);
+  outputs.push_back(png);
+  writeFilesAtomically(outputs, o.common.writeOptions(), [&](const std::vector<std::string>& files) {
+    io::writeLabelMap(files.front(), labels);
+    viz::writeSliceOverlayPng(scan, labels, files.back());
+  });
   report.output("labels", o.out);
   report.output("png", png);
   o.common.finish(report);

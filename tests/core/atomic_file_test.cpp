@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -40,9 +41,11 @@ class AtomicFile : public ::testing::Test {
     std::ifstream in(path);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
+  // The names in `dir`, sorted.
   std::vector<std::string> listing() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+    std::sort(names.begin(), names.end());
     return names;
   }
 
@@ -263,6 +266,111 @@ TEST_F(AtomicFile, SigtermDuringAWriteLeavesNoTemporary) { expectNoTemporaryAfte
 
 TEST_F(AtomicFile, SigintDuringAMultiFileWriteLeavesNoTemporary) {
   expectNoTemporaryAfterSignal(dir, SIGINT, true);
+}
+
+// writeFilesAtomically: files that belong together (a label map, its tables, its picture) appear all or
+// none, an old set stays whole when the new one fails, and what a writer puts beside its temporary goes
+// along.
+TEST_F(AtomicFile, FilesWrittenTogetherAppearAllOrNone) {
+  fs::create_directories(dir / "pictures");
+  const std::vector<std::string> outputs{(dir / "labels.nii.gz").string(), (dir / "labels.tsv").string(),
+                                         (dir / "pictures" / "labels.png").string()};
+  std::vector<std::string> temporaries;
+  writeFilesAtomically(outputs, {}, [&](const std::vector<std::string>& files) {
+    temporaries = files;
+    for (const std::string& output : outputs) EXPECT_FALSE(fs::exists(output));
+    put(files[0], "voxels");
+    put(files[1], "table");
+    put(files[2], "picture");
+  });
+  EXPECT_EQ(get(outputs[0]), "voxels");
+  EXPECT_EQ(get(outputs[1]), "table");
+  EXPECT_EQ(get(outputs[2]), "picture");
+  // One private folder per output folder: the label map's table is written beside its temporary.
+  EXPECT_EQ(fs::path(temporaries[0]).parent_path(), fs::path(temporaries[1]).parent_path());
+  EXPECT_EQ(fs::path(temporaries[2]).parent_path().parent_path(), dir / "pictures");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"labels.nii.gz", "labels.tsv", "pictures"}));
+
+  // The picture fails after the labels were written: nothing new appears, the old set stays.
+  WriteOptions force;
+  force.force = true;
+  try {
+    writeFilesAtomically(outputs, force, [&](const std::vector<std::string>& files) {
+      put(files[0], "new voxels");
+      put(files[1], "new table");
+      throw BadInput(files[2], "cannot write: no space left on device");
+    });
+    FAIL() << "the picture's failure was swallowed";
+  } catch (const BadInput& error) {
+    std::cout << "picture failed: " << error.what() << "\n";
+    EXPECT_EQ(error.file(), outputs[2]);
+  }
+  EXPECT_EQ(get(outputs[0]), "voxels");
+  EXPECT_EQ(get(outputs[1]), "table");
+  EXPECT_EQ(get(outputs[2]), "picture");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"labels.nii.gz", "labels.tsv", "pictures"}));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "pictures"), fs::directory_iterator()), 1);
+}
+
+// The last file cannot be moved into place (something made a folder there meanwhile): the files already
+// moved are undone, the old ones back.
+TEST_F(AtomicFile, FilesWrittenTogetherAreUndoneWhenOneCannotBeMoved) {
+  const std::vector<std::string> outputs{(dir / "labels.nii.gz").string(), (dir / "labels.png").string()};
+  put(outputs[0], "old voxels");
+  WriteOptions force;
+  force.force = true;
+  EXPECT_THROW(writeFilesAtomically(outputs, force,
+                                    [&](const std::vector<std::string>& files) {
+                                      put(files[0], "new voxels");
+                                      put(files[1], "new picture");
+                                      fs::create_directories(fs::path(outputs[1]) / "held");
+                                    }),
+               BadInput);
+  EXPECT_EQ(get(outputs[0]), "old voxels");
+  EXPECT_TRUE(fs::is_directory(outputs[1]));
+  fs::remove_all(outputs[1]);
+  EXPECT_EQ(listing(), std::vector<std::string>{"labels.nii.gz"});
+
+  // Without an old file, the first one is removed again.
+  fs::remove(outputs[0]);
+  EXPECT_THROW(writeFilesAtomically(outputs, {},
+                                    [&](const std::vector<std::string>& files) {
+                                      put(files[0], "new voxels");
+                                      put(files[1], "new picture");
+                                      fs::create_directories(fs::path(outputs[1]) / "held");
+                                    }),
+               BadInput);
+  EXPECT_EQ(listing(), std::vector<std::string>{"labels.png"});
+}
+
+TEST_F(AtomicFile, FilesWrittenTogetherTakeWhatTheWriterPutsBeside) {
+  const std::string header = (dir / "scan.nhdr").string();
+  writeFilesAtomically({header}, {}, [&](const std::vector<std::string>& files) {
+    put(files[0], "data file: scan.raw.gz");
+    put((fs::path(files[0]).parent_path() / "scan.raw.gz").string(), "voxels");
+  });
+  EXPECT_EQ(get(dir / "scan.raw.gz"), "voxels");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"scan.nhdr", "scan.raw.gz"}));
+  // An existing file there is checked as an output: kept without force, and nothing else appears.
+  fs::remove(header);
+  EXPECT_THROW(writeFilesAtomically({header}, {},
+                                    [&](const std::vector<std::string>& files) {
+                                      put(files[0], "data file: scan.raw.gz");
+                                      put((fs::path(files[0]).parent_path() / "scan.raw.gz").string(), "new");
+                                    }),
+               UsageError);
+  EXPECT_EQ(get(dir / "scan.raw.gz"), "voxels");
+  EXPECT_EQ(listing(), std::vector<std::string>{"scan.raw.gz"});
+}
+
+TEST_F(AtomicFile, AFileGivenTwiceIsRefused) {
+  const std::string labels = (dir / "labels.nii.gz").string();
+  bool called = false;
+  EXPECT_THROW(writeFilesAtomically({labels, (dir / "." / "labels.nii.gz").string()}, {},
+                                    [&](const std::vector<std::string>&) { called = true; }),
+               UsageError);
+  EXPECT_FALSE(called);
+  EXPECT_TRUE(listing().empty());
 }
 
 // writeFolderAtomically: the folder appears whole at the end, a failure or a signal halfway leaves the

@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <system_error>
 #include <vector>
@@ -283,39 +285,6 @@ void checkNotAnInput(const std::string& path) {
   }
 }
 
-void writeAtomically(const std::string& path, const WriteOptions& options,
-                     const std::function<void(const std::string& temporaryPath)>& write) {
-  const fs::path target(path);
-  checkNotAnInput(path);
-  std::error_code ec;
-  if (fs::exists(target, ec)) {
-    // Renaming over a folder, device or pipe (say /dev/null) would destroy it, --force or not.
-    if (!fs::is_regular_file(target, ec)) throw UsageError(path + ": exists and is not a regular file");
-    if (!options.force) throw UsageError(path + ": exists; pass --force to replace it");
-  }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent, ec)) throw UsageError(path + ": folder " + parent.string() + " does not exist");
-
-  // Same folder, so the rename is atomic; same file name, so format-by-extension writers still work.
-  const TemporaryFolder folder(path);
-  const std::string temporary = folder.path() + "/" + target.filename().string();
-  try {
-    write(temporary);
-    struct stat written {};
-    if (::lstat(temporary.c_str(), &written) != 0 || !S_ISREG(written.st_mode))
-      throw BadInput(path, "cannot write: the writer produced no file");
-    syncFile(temporary, path);
-    if (::rename(temporary.c_str(), path.c_str()) != 0)
-      throw BadInput(path, "cannot move the written file into place: " + errnoText(errno));
-    syncFolder(parent, path);
-  } catch (const BadInput& error) {
-    // Writers name the file they were given; the user knows only the output.
-    throw BadInput(replaced(error.file(), temporary, path), replaced(error.problem(), temporary, path));
-  } catch (const fs::filesystem_error& error) {
-    throw BadInput(path, "cannot write: " + error.code().message());
-  }
-}
-
 namespace {
 
 // `dir` as the folder it names: "out/" and "out/." are "out".
@@ -388,7 +357,115 @@ void moveFolderIntoPlace(const fs::path& staged, const fs::path& target, const f
   }
 }
 
+// writeFilesAtomically's checks of one output before the work, as writeAtomically documents them.
+void checkOutputFile(const std::string& path, const WriteOptions& options) {
+  checkNotAnInput(path);
+  const fs::path target(path);
+  std::error_code ec;
+  if (fs::exists(target, ec)) {
+    // Renaming over a folder, device or pipe (say /dev/null) would destroy it, --force or not.
+    if (!fs::is_regular_file(target, ec)) throw UsageError(path + ": exists and is not a regular file");
+    if (!options.force) throw UsageError(path + ": exists; pass --force to replace it");
+  }
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent, ec)) throw UsageError(path + ": folder " + parent.string() + " does not exist");
+}
+
+// Moves each written temporary over its output; with more than one, an output that existed is first
+// linked into the private folder (`kept`), so that if a later move fails the earlier ones are undone: the
+// old files back, the new ones removed. Signals are held off meanwhile: the cleanup handler would remove
+// the kept files with the private folders.
+void moveFilesIntoPlace(const std::vector<std::string>& temporaries, const std::vector<std::string>& paths) {
+  const CleanupSignalsHeld held;
+  std::vector<std::string> kept(paths.size());
+  for (std::size_t k = 0; paths.size() > 1 && k < paths.size(); ++k) {
+    struct stat old {};
+    if (::lstat(paths[k].c_str(), &old) != 0 || !S_ISREG(old.st_mode)) continue;
+    kept[k] = temporaries[k] + ".replaced";
+    if (::link(paths[k].c_str(), kept[k].c_str()) != 0)
+      throw BadInput(paths[k], "cannot keep the old file while its companions are written: " + errnoText(errno));
+  }
+  for (std::size_t k = 0; k < paths.size(); ++k)
+    if (::rename(temporaries[k].c_str(), paths[k].c_str()) != 0) {
+      const int error = errno;
+      for (std::size_t j = 0; j < k; ++j) {
+        if (!kept[j].empty())
+          ::rename(kept[j].c_str(), paths[j].c_str());
+        else
+          ::unlink(paths[j].c_str());
+      }
+      throw BadInput(paths[k], "cannot move the written file into place: " + errnoText(error));
+    }
+}
+
 }  // namespace
+
+void writeFilesAtomically(const std::vector<std::string>& paths, const WriteOptions& options,
+                          const std::function<void(const std::vector<std::string>& temporaryPaths)>& write) {
+  std::vector<fs::path> seen;
+  for (const std::string& path : paths) {
+    const fs::path normal = fs::absolute(path).lexically_normal();
+    if (std::find(seen.begin(), seen.end(), normal) != seen.end()) throw UsageError(path + ": given twice as an output");
+    seen.push_back(normal);
+    checkOutputFile(path, options);
+  }
+  // One private folder per output folder, so that a writer putting files beside the one it is given (a
+  // label map's tables, a .nhdr's data file) puts them beside its temporary; same names, so
+  // format-by-extension writers work.
+  struct Staging {
+    fs::path folder;     // the outputs' folder, as given
+    std::string output;  // the first output in it, for messages
+    std::unique_ptr<TemporaryFolder> temporary;
+  };
+  std::map<fs::path, Staging> stagings;
+  std::vector<std::string> temporaries;
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    Staging& staging = stagings[seen[k].parent_path()];
+    if (!staging.temporary) {
+      staging.folder = fs::path(paths[k]).has_parent_path() ? fs::path(paths[k]).parent_path() : fs::path(".");
+      staging.output = paths[k];
+      staging.temporary = std::make_unique<TemporaryFolder>(paths[k]);
+    }
+    temporaries.push_back(staging.temporary->path() + "/" + fs::path(paths[k]).filename().string());
+  }
+  // Writers name the files they were given; the user knows only the outputs.
+  const auto outputsNamed = [&](std::string text) {
+    for (std::size_t k = 0; k < paths.size(); ++k) text = replaced(text, temporaries[k], paths[k]);
+    for (const auto& [normal, staging] : stagings) text = replaced(text, staging.temporary->path(), staging.folder.string());
+    return text;
+  };
+  try {
+    write(temporaries);
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      struct stat written {};
+      if (::lstat(temporaries[k].c_str(), &written) != 0 || !S_ISREG(written.st_mode))
+        throw BadInput(paths[k], "cannot write: the writer produced no file");
+    }
+    // Every file the writer left beside its temporaries goes along, checked as the outputs were.
+    std::vector<std::string> from = temporaries, to = paths;
+    for (const auto& [normal, staging] : stagings)
+      for (const fs::directory_entry& entry : fs::directory_iterator(staging.temporary->path())) {
+        if (!entry.is_regular_file() || entry.is_symlink() ||
+            std::find(from.begin(), from.end(), entry.path().string()) != from.end())
+          continue;
+        from.push_back(entry.path().string());
+        to.push_back((staging.folder / entry.path().filename()).string());
+        checkOutputFile(to.back(), options);
+      }
+    for (std::size_t k = 0; k < from.size(); ++k) syncFile(from[k], to[k]);
+    moveFilesIntoPlace(from, to);
+    for (const auto& [normal, staging] : stagings) syncFolder(staging.folder, staging.output);
+  } catch (const BadInput& error) {
+    throw BadInput(outputsNamed(error.file()), outputsNamed(error.problem()));
+  } catch (const fs::filesystem_error& error) {
+    throw BadInput(paths.front(), "cannot write: " + error.code().message());
+  }
+}
+
+void writeAtomically(const std::string& path, const WriteOptions& options,
+                     const std::function<void(const std::string& temporaryPath)>& write) {
+  writeFilesAtomically({path}, options, [&](const std::vector<std::string>& temporaries) { write(temporaries[0]); });
+}
 
 void checkOutputFolder(const std::string& dir, const WriteOptions& options) {
   const fs::path target = outputFolder(dir);

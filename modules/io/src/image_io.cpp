@@ -338,30 +338,23 @@ void writeLabelMap(const std::string& path, const LabelMap& labelMap, const Writ
   checkWritableFormat(path);
   const Grid<Label>& labels = labelMap.labels;
   checkValueCount(labels.geometry, labels.values.size(), path);
-  const std::vector<std::string> tablePaths = labelTableSidecarPaths(path);
-  checkNotExisting(path, options);
-  for (const std::string& tablePath : tablePaths) checkNotExisting(tablePath, options);
-  // The tables are made before the labels are written, so a name no table format can carry writes nothing.
   const std::array<LabelTableFormat, 3> formats{
       {LabelTableFormat::Tsv, LabelTableFormat::SlicerColorTable, LabelTableFormat::ItkSnap}};
   const Label largest =
       labels.values.empty() ? 0 : *std::max_element(labels.values.begin(), labels.values.end());
   const std::vector<float> values(labels.values.begin(), labels.values.end());
-  writeImage(path, options,
-             rawHeaderOf(labels.geometry, largest < 256 ? PixelType::UInt8 : PixelType::UInt16), values);
-  std::vector<std::string> written{path};
-  try {
-    for (std::size_t k = 0; k < formats.size(); ++k) {
-      writeLabelTable(tablePaths[k], labelMap.table, options, formats[k]);
-      written.push_back(tablePaths[k]);
-    }
-  } catch (...) {
-    // Labels without their tables would read back with made-up names (a full disk can fail a table
-    // alone), so what was written goes too.
-    std::error_code ignored;
-    for (const std::string& file : written) fs::remove(file, ignored);
-    throw;
-  }
+  // Labels without their tables would read back with made-up names (a full disk can fail a table alone).
+  writeFilesAtomically(labelMapFiles(path), options, [&](const std::vector<std::string>& files) {
+    writeImage(files[0], {}, rawHeaderOf(labels.geometry, largest < 256 ? PixelType::UInt8 : PixelType::UInt16), values);
+    for (std::size_t k = 0; k < formats.size(); ++k) writeLabelTable(files[k + 1], labelMap.table, {}, formats[k]);
+  });
+}
+
+std::vector<std::string> labelMapFiles(const std::string& path) {
+  std::vector<std::string> files{path};
+  if (isSlicerSegmentationPath(path)) return files;
+  for (const std::string& table : labelTableSidecarPaths(path)) files.push_back(table);
+  return files;
 }
 
 std::string labelTableSidecarPath(const std::string& labelMapPath) {

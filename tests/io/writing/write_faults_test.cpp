@@ -1,7 +1,7 @@
 // Issue 32, item 1: a full disk. Each writer of io, given a file system with no room (or too little room)
 // for its output, must throw a BadInput naming the output and leave nothing behind: neither the output
-// nor a temporary. The file system is a 2 MB tmpfs the test mounts; without the right to mount one the
-// test is skipped.
+// nor a temporary. The file system is a 2 MB tmpfs the test mounts (full_disk.h); without the right to
+// mount one the test is skipped.
 #include "vesalius/core/error.h"
 #include "vesalius/core/grid.h"
 #include "vesalius/core/label_map.h"
@@ -14,6 +14,8 @@
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/motion_io.h"
 #include "vesalius/io/report.h"
+
+#include "full_disk.h"
 
 #include <gtest/gtest.h>
 
@@ -52,51 +54,8 @@ struct Case {
   std::function<void(const std::string& path)> write;
 };
 
-class FullDisk : public ::testing::Test {
+class FullDisk : public vesalius::test::FullDiskTest {
  protected:
-  void SetUp() override {
-    // A mount of its own per test: ctest runs the tests of this file at the same time.
-    dir = fs::path(VESALIUS_TEST_OUTPUT) / ("tmpfs_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::system(("umount '" + dir.string() + "' 2>/dev/null").c_str());  // left by an aborted run
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    if (std::system(("mount -t tmpfs -o size=2m tmpfs '" + dir.string() + "' 2>/dev/null").c_str()) != 0)
-      GTEST_SKIP() << "cannot mount a 2 MB tmpfs at " << dir.string()
-                   << " (needs root or CAP_SYS_ADMIN): the full-disk cases are not run";
-    mounted = true;
-  }
-  void TearDown() override {
-    if (mounted) std::system(("umount '" + dir.string() + "'").c_str());
-  }
-
-  // Fills the file system but for about `leaveFree` bytes: a reserve of that size is written first and
-  // removed once the filler has met ENOSPC.
-  void fill(std::size_t leaveFree) {
-    const std::string reserve = (dir / "reserve").string();
-    if (leaveFree > 0) writeUntilFull(reserve, leaveFree);
-    writeUntilFull((dir / "filler").string(), std::size_t(-1));
-    if (leaveFree > 0) fs::remove(reserve);
-  }
-
-  static void writeUntilFull(const std::string& path, std::size_t limit) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ASSERT_GE(fd, 0);
-    std::vector<char> block(4096, 'f');
-    std::size_t written = 0;
-    while (written < limit) {
-      const ssize_t n = ::write(fd, block.data(), std::min(block.size(), limit - written));
-      if (n <= 0) break;
-      written += std::size_t(n);
-    }
-    ::close(fd);
-  }
-
-  std::vector<std::string> listing() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-    return names;
-  }
-
   // Each case must throw BadInput naming its output (or another file it makes: a label map's table, TetGen's
   // .node) and leave only the filler.
   void expectEachFails(const std::vector<Case>& cases, const char* situation) {
@@ -121,9 +80,6 @@ class FullDisk : public ::testing::Test {
         if (name != "filler") fs::remove_all(dir / name);  // so the next case is judged on its own
     }
   }
-
-  fs::path dir;
-  bool mounted = false;
 };
 
 // Random values, so compression cannot make them fit.

@@ -25,6 +25,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace vesalius {
 
@@ -37,6 +38,16 @@ struct WriteOptions {
 // The temporary has the same file name as `path` (writers pick their format from its extension).
 void writeAtomically(const std::string& path, const WriteOptions& options,
                      const std::function<void(const std::string& temporaryPath)>& write);
+
+// Files that belong together (a label map and its tables, a label map and its picture) are written all or
+// none. Each path is checked as writeAtomically checks it, and given once; `write(temporaryPaths)` gets, for
+// each path, a file of the same name in a private folder beside it (one per output folder, so a writer
+// that puts files beside the one it is given puts them beside its temporary, and they go along: a .nhdr's
+// data file). Only when every temporary is a written, fsynced file are they moved into place; an output
+// replaced with `force` is kept in the private folder until all are in place, and put back if a later one
+// cannot be moved. Signals are held off while they move. Errors as writeAtomically's, naming the outputs.
+void writeFilesAtomically(const std::vector<std::string>& paths, const WriteOptions& options,
+                          const std::function<void(const std::vector<std::string>& temporaryPaths)>& write);
 
 // The files and folders a command reads, so that no output replaces one (DESIGN.md, "An input is never
 // overwritten"). protectInput records `path` (an existing file or folder; others are ignored) by device

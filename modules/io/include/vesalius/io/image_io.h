@@ -67,10 +67,14 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath = ""
 
 // Writes the labels (uint8 if every id is below 256, else uint16) and the table three times beside them,
 // so that 3D Slicer and ITK-SNAP find names and colours too (labelTableSidecarPaths: our TSV, a Slicer
-// colour table, an ITK-SNAP label description file), all atomically; none is written if any exists and
-// !options.force, and the labels and tables written are removed again if a table cannot be written.
+// colour table, an ITK-SNAP label description file), all or none (writeFilesAtomically); none is written if
+// any exists and !options.force.
 // A path ending .seg.nrrd is written as a Slicer segmentation carrying the table itself, without sidecars.
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options = {});
+
+// The files writeLabelMap(path) writes: the path, then its sidecar tables (none for a .seg.nrrd), so that a
+// caller can write them together with other outputs (writeFilesAtomically).
+std::vector<std::string> labelMapFiles(const std::string& path);
 
 // The file that holds a label map's table: "<stem>.tsv" beside it ("seg/body.nii.gz" -> "seg/body.tsv"),
 // or the path itself for a .seg.nrrd.
