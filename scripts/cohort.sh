@@ -43,5 +43,6 @@ case " $* " in
     local_resources=(--cores "$(nproc)" --resources "mem_mb=$mem_mb")
     ;;
 esac
+# The caller's arguments first: --resources takes every word after it, a target such as `reference` too.
 exec snakemake --snakefile "$repo/workflows/cohort/Snakefile" --directory "$out" --keep-going --rerun-incomplete \
-  "${local_resources[@]}" "${args[@]}"
+  "${args[@]}" "${local_resources[@]}"

@@ -182,14 +182,16 @@ void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
   cmd.add_option("--refits", o.pipeline.organFit.refits, "Refits of each organ fit from the shape it reached")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
-  cmd.add_option("--reference", o.reference,
-                 "Full-body reference folder to complete into the patient beyond the scan (`vesalius reference "
-                 "full-body`); default: built from the shipped MakeHuman body and OpenSim model");
-  cmd.add_flag("!--no-reference", o.complete, "Do not complete the full-body reference into the patient");
+  CLI::Option* reference =
+      cmd.add_option("--reference", o.reference,
+                     "Full-body reference folder to complete into the patient beyond the scan (`vesalius reference "
+                     "full-body`); default: built from the shipped MakeHuman body and OpenSim model");
+  cmd.add_flag("!--no-reference", o.complete, "Do not complete the full-body reference into the patient")->excludes(reference);
   cmd.add_flag("--reference-organs", o.referenceOrgans,
                "The built full-body reference with the shipped organs and muscles (templates/reference-organs/): "
                "those --organs lacks (all without --organs) come from it; they lie too far up the body "
-               "(docs/virtual-patient.md)");
+               "(docs/virtual-patient.md). A --reference folder holds its own (`reference full-body --organ-meshes`)")
+      ->excludes(reference);
   cmd.add_option("--pose", o.pose,
                  "Also pose the patient by joint angles in degrees, e.g. 'femur_l=-30,0,0; femur_r=-30,0,0' (both hips "
                  "flexed 30 degrees); the joints are OpenSim's: pelvis, femur_l, tibia_l, talus_l, torso, humerus_l, "

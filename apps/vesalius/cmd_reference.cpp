@@ -182,19 +182,25 @@ void addReferenceCommand(CLI::App& app) {
 
   auto f = std::make_shared<FullBodyOptions>();
   CLI::App* full = cmd->add_subcommand("full-body", "Reference anatomy from a MakeHuman skin with an OpenSim skeleton placed inside it");
-  full->add_option("--skin", f->skin, "MakeHuman body (.obj, decimetres, +Y up)")->required();
-  full->add_option("--skeleton", f->skeleton, "MakeHuman default rig (.mhskel)")->required();
+  const FullBodyFiles shipped = shippedFullBodyFiles();
+  f->skin = shipped.skin;
+  f->skeleton = shipped.skeleton;
+  f->model = shipped.model;
+  full->add_option("--skin", f->skin, "MakeHuman body (.obj, decimetres, +Y up); default: the shipped neutral body")
+      ->capture_default_str();
+  full->add_option("--skeleton", f->skeleton, "MakeHuman default rig (.mhskel); default: the shipped one")->capture_default_str();
   full->add_option("--base-mesh", f->baseMesh, "MakeHuman base.obj for the rig, and the uv of a skin without them (default: beside the rig)");
-  full->add_option("--model", f->model, "OpenSim model (.osim) with its Geometry folder beside it")->required();
+  full->add_option("--model", f->model, "OpenSim model (.osim) with its Geometry folder beside it; default: the shipped "
+                                        "Rajagopal et al. 2016 model")
+      ->capture_default_str();
   full->add_option("--organ-meshes", f->organMeshes,
                     "Reference folder of organs and muscles made for this skin (`vesalius reference organs`; "
                     "templates/reference-organs for the shipped neutral body), added to the bones");
   full->add_option("--out", f->out, "Reference folder to write")->required();
   addCommonOptions(*full, f->common);
   full->footer(
-      "Example:\n  vesalius reference full-body --skin testdata/body/shapes/mh_neutral_body.obj \\\n"
-      "    --skeleton testdata/body/default.mhskel --model testdata/skeleton-opensim/Rajagopal2016.osim \\\n"
-      "    --organ-meshes templates/reference-organs --out body-reference\n"
+      "Examples:\n  vesalius reference full-body --out body-reference       # the shipped body and model\n"
+      "  vesalius reference full-body --skin my_makehuman_body.obj --out my-reference\n"
       "The skeleton is placed by seed 004's body frame and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
   full->callback([f] { runFullBody(*f); });
 

@@ -58,13 +58,16 @@ std::vector<patient::OrganTemplate> readOrganTemplates(const std::string& folder
   return templates;
 }
 
+FullBodyFiles shippedFullBodyFiles() {
+  return {shippedData("body/shapes/mh_neutral_body.obj"), shippedData("body/default.mhskel"),
+          shippedData("skeleton-opensim/Rajagopal2016.osim")};
+}
+
 ReferenceAnatomy shippedFullBodyReference(bool withOrgans) {
-  const std::string skeleton = shippedData("body/default.mhskel");
-  const patient::FullBodySources sources =
-      readFullBodySources(shippedData("body/shapes/mh_neutral_body.obj"), skeleton, "",
-                          shippedData("skeleton-opensim/Rajagopal2016.osim"),
-                          withOrgans ? shippedTemplates("reference-organs") : "");
-  return patient::buildFullBodyReference(sources, skeleton).anatomy;
+  const FullBodyFiles files = shippedFullBodyFiles();
+  const patient::FullBodySources sources = readFullBodySources(
+      files.skin, files.skeleton, "", files.model, withOrgans ? shippedTemplates("reference-organs") : "");
+  return patient::buildFullBodyReference(sources, files.skeleton).anatomy;
 }
 
 }  // namespace vesalius::cli

@@ -24,9 +24,15 @@ patient::FullBodySources readFullBodySources(const std::string& skin, const std:
 // file's stem, sorted by name. Throws BadInput naming a folder that is not one.
 std::vector<patient::OrganTemplate> readOrganTemplates(const std::string& folder);
 
-// The full-body reference built from the shipped sources (shipped_data.h): MakeHuman's neutral body and
-// default rig, OpenSim's Rajagopal 2016 model and, with organs, the organs and muscles made for that body
-// (templates/reference-organs/), as `vesalius reference full-body` builds it.
+// The shipped sources of the full-body reference (shipped_data.h): MakeHuman's neutral body and default
+// rig, OpenSim's Rajagopal et al. 2016 model; `reference full-body`'s defaults.
+struct FullBodyFiles {
+  std::string skin, skeleton, model;
+};
+FullBodyFiles shippedFullBodyFiles();
+
+// The full-body reference built from the shipped sources and, with organs, the organs and muscles made
+// for that body (templates/reference-organs/), as `vesalius reference full-body` builds it.
 ReferenceAnatomy shippedFullBodyReference(bool withOrgans);
 
 }  // namespace vesalius::cli

@@ -41,13 +41,16 @@ done
 moved=$(VESALIUS_SHARE_DIR=/elsewhere "$vesalius" demo --help | sed -n 's/^ *--scan TEXT=\([^ ]*\).*/\1/p')
 [ "$moved" = /elsewhere/data/ct-abdomen-pelvis/example_ct.nii.gz ] || fail "VESALIUS_SHARE_DIR gave '$moved'"
 
-# The full-body reference from the installed sources alone (`patient` builds it the same way).
-"$vesalius" reference full-body --progress none --skin "$share/data/body/shapes/mh_neutral_body.obj" \
-  --skeleton "$share/data/body/default.mhskel" --model "$share/data/skeleton-opensim/Rajagopal2016.osim" \
-  --organ-meshes "$share/templates/reference-organs" --out "$prefix/reference" > /dev/null
+# The full-body reference from the installed sources alone, by its defaults (`patient` builds it the same
+# way): the report names the files it read, in the prefix.
+"$vesalius" reference full-body --progress none --organ-meshes "$share/templates/reference-organs" \
+  --out "$prefix/reference" --report "$prefix/reference.json" > /dev/null
 tissues=$(ls "$prefix/reference/tissues" | wc -l)
 echo "full-body reference from the installed data: $tissues tissue files"
 [ "$tissues" -gt 0 ] || fail "the reference has no tissues"
+for f in data/body/shapes/mh_neutral_body.obj data/body/default.mhskel data/skeleton-opensim/Rajagopal2016.osim; do
+  grep -q -F "\"$share/$f\"" "$prefix/reference.json" || fail "the reference did not read $share/$f"
+done
 
 # 3D Slicer's module factory runs each executable of a module path with --xml (docs/cli.md).
 modules=$(find "$prefix" -type d -name slicer-modules)

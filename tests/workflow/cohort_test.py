@@ -172,6 +172,22 @@ def test_local(args) -> None:
     rerun = read_tsv(os.path.join(out, "cohort.tsv"))
     check(same_results(rows, rerun), "the summary after the rerun holds the same results")
 
+    # With the full pipeline's options the full-body reference is built once, and every patient job is
+    # given it: the plan has one reference job before the patient jobs, each run with --reference.
+    full = os.path.join(args.work, "full-pipeline")
+    shutil.rmtree(full, ignore_errors=True)
+    p = cohort(args, scans, full, ["--dry-run", "--printshellcmds"])
+    stats = dict(re.findall(r"^(patient|reference|summary)\s+(\d+)", p.stdout, re.M))
+    given = [line for line in p.stdout.splitlines() if "run_patient.py" in line and "--reference reference" in line]
+    check(p.returncode == 0 and stats == {"patient": str(len(SCANS)), "reference": "1", "summary": "1"} and
+          len(given) == len(SCANS), f"the full pipeline plans one shared reference ({stats}), given to "
+          f"{len(given)} of {len(SCANS)} patient jobs")
+    p = cohort(args, scans, full, ["reference"])
+    tissues = os.path.join(full, "reference", "tissues")
+    count = len(os.listdir(tissues)) if os.path.isdir(tissues) else 0
+    check(p.returncode == 0 and os.path.exists(os.path.join(full, "reference", "reference.json")) and count > 0,
+          f"the reference rule built the shipped full-body reference ({count} tissues)")
+
     # A usage error (an option vesalius does not know) fails every job; --keep-going runs them all and the
     # onerror handler still writes the table, each scan with the error from its log.
     bad = os.path.join(args.work, "usage-error")
