@@ -373,17 +373,18 @@ void checkOutputFile(const std::string& path, const WriteOptions& options) {
 
 // Moves each written temporary over its output; with more than one, an output that existed is first
 // linked into the private folder (`kept`), so that if a later move fails the earlier ones are undone: the
-// old files back, the new ones removed. Signals are held off meanwhile: the cleanup handler would remove
-// the kept files with the private folders.
+// old files back, the new ones removed. A file system without hard links (FAT) keeps no old file: a new
+// one that replaced it then stays. Signals are held off meanwhile: the cleanup handler would remove the
+// kept files with the private folders.
 void moveFilesIntoPlace(const std::vector<std::string>& temporaries, const std::vector<std::string>& paths) {
   const CleanupSignalsHeld held;
   std::vector<std::string> kept(paths.size());
+  std::vector<bool> existed(paths.size(), false);
   for (std::size_t k = 0; paths.size() > 1 && k < paths.size(); ++k) {
     struct stat old {};
-    if (::lstat(paths[k].c_str(), &old) != 0 || !S_ISREG(old.st_mode)) continue;
-    kept[k] = temporaries[k] + ".replaced";
-    if (::link(paths[k].c_str(), kept[k].c_str()) != 0)
-      throw BadInput(paths[k], "cannot keep the old file while its companions are written: " + errnoText(errno));
+    existed[k] = ::lstat(paths[k].c_str(), &old) == 0;
+    if (existed[k] && S_ISREG(old.st_mode) && ::link(paths[k].c_str(), (temporaries[k] + ".replaced").c_str()) == 0)
+      kept[k] = temporaries[k] + ".replaced";
   }
   for (std::size_t k = 0; k < paths.size(); ++k)
     if (::rename(temporaries[k].c_str(), paths[k].c_str()) != 0) {
@@ -391,7 +392,7 @@ void moveFilesIntoPlace(const std::vector<std::string>& temporaries, const std::
       for (std::size_t j = 0; j < k; ++j) {
         if (!kept[j].empty())
           ::rename(kept[j].c_str(), paths[j].c_str());
-        else
+        else if (!existed[j])
           ::unlink(paths[j].c_str());
       }
       throw BadInput(paths[k], "cannot move the written file into place: " + errnoText(error));

@@ -44,8 +44,9 @@ void writeAtomically(const std::string& path, const WriteOptions& options,
 // each path, a file of the same name in a private folder beside it (one per output folder, so a writer
 // that puts files beside the one it is given puts them beside its temporary, and they go along: a .nhdr's
 // data file). Only when every temporary is a written, fsynced file are they moved into place; an output
-// replaced with `force` is kept in the private folder until all are in place, and put back if a later one
-// cannot be moved. Signals are held off while they move. Errors as writeAtomically's, naming the outputs.
+// replaced with `force` is kept in the private folder (a hard link; not on FAT) until all are in place,
+// and put back if a later one cannot be moved. Signals are held off while they move. Errors as
+// writeAtomically's, naming the outputs.
 void writeFilesAtomically(const std::vector<std::string>& paths, const WriteOptions& options,
                           const std::function<void(const std::vector<std::string>& temporaryPaths)>& write);
 
