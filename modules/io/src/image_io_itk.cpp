@@ -442,7 +442,11 @@ void checkNrrdHeader(const std::string& path) {
 
 // The `Key = value` fields of a MetaImage header up to ElementDataFile, its last field. A header is text
 // with each key once: MetaIO reads C strings and keeps its own choice of a repeated key, so a NUL byte or
-// a second NDims would make it read other sizes than the ones checked here.
+// a second NDims would make it read other sizes than the ones checked here. MetaIO ends a key at '=', ':'
+// or the end of the line and takes its value from the next '=' or ':', wherever that is: "NDims" alone on
+// a line above "TransformMatrix = 0 0 ..." sets NDims to 0. It copies keys and text values into 255-byte
+// buffers unchecked. So each line that is not blank is one word of at most 64 characters, '=' or ':',
+// and a value of at most 254.
 std::map<std::string, std::string> metaImageFields(const std::string& path, std::uint64_t& headerBytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw BadInput(path, "cannot open");
@@ -457,14 +461,45 @@ std::map<std::string, std::string> metaImageFields(const std::string& path, std:
     if (control != line.end())
       throw BadInput(path, "MetaImage header line " + std::to_string(number) + " holds the control byte " +
                                std::to_string(int(static_cast<unsigned char>(*control))) + " (the header must be text)");
-    const std::size_t equals = line.find('=');
-    if (equals == std::string::npos) continue;
+    const std::size_t equals = line.find_first_of("=:");
     const std::string key = trimmed(line.substr(0, equals));
-    if (!fields.emplace(key, trimmed(line.substr(equals + 1))).second)
+    if (equals == std::string::npos ? !key.empty()
+                                    : key.empty() || key.find_first_of(" \t") != std::string::npos)
+      throw BadInput(path, "MetaImage header line " + std::to_string(number) + " is not 'Key = Value'");
+    if (equals == std::string::npos) continue;  // a blank line
+    const std::size_t valueStart = line.find_first_not_of("=: \t", equals);  // as MetaIO skips to a value
+    const std::string value = valueStart == std::string::npos ? "" : trimmed(line.substr(valueStart));
+    if (key.size() > 64 || value.size() > 254)
+      throw BadInput(path, "MetaImage header line " + std::to_string(number) + " is too long (a key of " +
+                               std::to_string(key.size()) + " characters, a value of " +
+                               std::to_string(value.size()) + "; at most 64 and 254)");
+    if (!fields.emplace(key, value).second)
       throw BadInput(path, "MetaImage header gives " + key.substr(0, 40) + " twice (line " + std::to_string(number) + ")");
     if (key == "ElementDataFile") break;  // data follows
   }
   return fields;
+}
+
+// MetaIO reads a yes/no field (CompressedData, BinaryData) by its first character alone.
+bool metaImageTrue(const std::string& value) {
+  return !value.empty() && (value[0] == 'T' || value[0] == 't' || value[0] == '1');
+}
+
+// The bytes of one element of a MetaImage's ElementType. MetaIO takes any type name that starts with a
+// known one ("MET_UCHAR" followed by anything), so only the exact names are accepted.
+std::uint64_t metaImageElementBytes(const std::string& path, const std::map<std::string, std::string>& fields) {
+  static const std::map<std::string, std::uint64_t> kBytes = {
+      {"MET_CHAR", 1}, {"MET_UCHAR", 1}, {"MET_SHORT", 2}, {"MET_USHORT", 2}, {"MET_INT", 4}, {"MET_UINT", 4},
+      {"MET_LONG", 4}, {"MET_ULONG", 4}, {"MET_LONG_LONG", 8}, {"MET_ULONG_LONG", 8}, {"MET_FLOAT", 4},
+      {"MET_DOUBLE", 8}};
+  const auto field = fields.find("ElementType");
+  if (field == fields.end()) throw BadInput(path, "MetaImage header without ElementType");
+  const auto type = kBytes.find(field->second);
+  if (type == kBytes.end())
+    throw BadInput(path, "MetaImage ElementType '" + field->second.substr(0, 40) +
+                             "' is not one of MET_CHAR, MET_UCHAR, MET_SHORT, MET_USHORT, MET_INT, MET_UINT, "
+                             "MET_LONG, MET_ULONG, MET_LONG_LONG, MET_ULONG_LONG, MET_FLOAT, MET_DOUBLE");
+  return type->second;
 }
 
 // MetaIO sizes its reads by DimSize but ITK sizes the image by NDims: NDims = 0 over DimSize = 4 3 2 makes
@@ -487,6 +522,7 @@ void checkMetaImageHeader(const std::string& path) {
   std::uint64_t headerBytes = 0;
   const std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   checkMetaImageDimensions(path, fields);
+  metaImageElementBytes(path, fields);
   for (const char* key : {"ElementSpacing", "ElementSize"})
     if (fields.count(key)) checkGeometryNumbers(path, key, headerNumbers(fields.at(key)), true);
   for (const char* key : {"Offset", "Origin", "Position", "TransformMatrix", "Rotation", "Orientation"})
@@ -545,7 +581,7 @@ std::optional<StoredData> metaImageStoredData(const std::string& path) {
     throw BadInput(path, "MetaImage data split over several files (ElementDataFile " + dataFile.substr(0, 40) +
                              ") is not supported; save the image with its data in one file");
   StoredData stored;
-  stored.expansion = fields["CompressedData"] == "True" ? 1032 : 1;
+  stored.expansion = metaImageTrue(fields["CompressedData"]) ? 1032 : 1;
   if (dataFile != "LOCAL") {
     stored.bytes = sizeOfDataFile(path, dataFile);
   } else {
@@ -702,14 +738,9 @@ void checkMetaImageBytes(const std::string& path) {
   std::uint64_t headerBytes = 0;
   std::map<std::string, std::string> fields = metaImageFields(path, headerBytes);
   if (!fields.count("ElementDataFile")) throw BadInput(path, "MetaImage header without ElementDataFile");
-  static const std::map<std::string, std::uint64_t> kBytes = {
-      {"MET_CHAR", 1}, {"MET_UCHAR", 1}, {"MET_SHORT", 2}, {"MET_USHORT", 2}, {"MET_INT", 4}, {"MET_UINT", 4},
-      {"MET_LONG", 4}, {"MET_ULONG", 4}, {"MET_LONG_LONG", 8}, {"MET_ULONG_LONG", 8}, {"MET_FLOAT", 4},
-      {"MET_DOUBLE", 8}};
-  const auto type = kBytes.find(fields["ElementType"]);
-  if (type == kBytes.end()) return;  // ITK refuses it
   const auto channels = fields.find("ElementNumberOfChannels");
-  std::uint64_t voxelBytes = type->second * (channels == fields.end() ? 1 : std::stoull(channels->second));
+  std::uint64_t voxelBytes =
+      metaImageElementBytes(path, fields) * (channels == fields.end() ? 1 : std::stoull(channels->second));
   std::istringstream sizes(fields["DimSize"]);
   for (std::uint64_t n; sizes >> n;) voxelBytes *= n;
 
@@ -719,7 +750,7 @@ void checkMetaImageBytes(const std::string& path) {
   const std::string dataPath = local ? path : (std::filesystem::path(path).parent_path() / dataFile).string();
   const std::uint64_t offset = local ? headerBytes : 0, size = std::filesystem::file_size(dataPath);
   const std::uint64_t actual = size > offset ? size - offset : 0;
-  if (fields["CompressedData"] != "True") {
+  if (!metaImageTrue(fields["CompressedData"])) {
     if (actual < voxelBytes)
       throw BadInput(path, "data is cut short: " + std::to_string(actual) + " of " + std::to_string(voxelBytes) + " bytes");
     return;

@@ -409,12 +409,33 @@ TEST(ImageIo, CompressedMetaImageMustInflateToItsVoxelsAndItsHeaderBeText) {
   twice.insert(0, "NDims = 2\n");
   std::string nul = header;
   nul.insert(nul.find("DimSize = ") + 12, std::string(1, '\0'));
+  // Found by fuzz_mha: MetaIO reads a line without '=' as a key whose value is on the next line.
+  std::string bare = header;
+  bare.insert(bare.find("DimSize = "), "NDims\n");
+  std::string spaced = header;
+  spaced.insert(spaced.find("DimSize = "), "Binary Data = True\n");
+  // MetaIO takes "CompressedData = Tr..." for True and skips '=' and ':' before a value.
+  std::string loose = header;
+  loose.replace(loose.find("CompressedData = True"), 21, "CompressedData = Truen");
+  loose.replace(loose.find("CompressedDataSize = "), 21, "CompressedDataSize =: ");
+  std::string typeSuffix = header;
+  typeSuffix.insert(typeSuffix.find("MET_SHORT") + 9, "\xef\xff");
+  std::string longKey = header;
+  longKey.insert(longKey.find("DimSize = "), std::string(300, 'K') + " = 1\n");
+  std::string longValue = header;
+  longValue.insert(longValue.find("DimSize = "), "Comment = " + std::string(300, 'c') + "\n");
   const std::pair<std::string, std::string> cases[] = {
       {header + flipped, "compressed data is corrupt"},
       {header + data.substr(0, data.size() - 10), "data is cut short"},
       {unsized + data, "compressed data without CompressedDataSize"},
       {twice + data, "gives NDims twice"},
       {nul + data, "holds the control byte 0"},
+      {bare + data, "is not 'Key = Value'"},
+      {spaced + data, "is not 'Key = Value'"},
+      {loose + flipped, "compressed data is corrupt"},
+      {typeSuffix + data, "is not one of MET_CHAR"},
+      {longKey + data, "a key of 300 characters"},
+      {longValue + data, "a value of 300"},
   };
   int n = 0;
   for (const auto& [file, fragment] : cases) {
