@@ -78,18 +78,17 @@ void searchDirection() {
   const fit::RigidGauge gauge(active, c.templ.V, x);
   SparseCholesky cholesky;
   double prep = 0;
-  Eigen::MatrixXd Z;
+  std::optional<fit::ConstraintJacobian> Z;
   prep = bench::seconds([&] {
     const fit::EquilibriumJacobian J(fem.stiffness(x, s, true), fem.plasticForceJacobian(x, s), x, &gauge, cholesky);
-    Z = J.constraintJacobian(fit::constraintRows(active, fem.vertexCount()));
+    Z.emplace(J.constraintJacobian(fit::constraintRows(active, fem.vertexCount())));
   });
   const Eigen::SparseMatrix<double> Lsc = fit::tetAdjacencyLaplacian(c.templ.T);
-  const Eigen::VectorXd h = -(Z.transpose() * fit::constraintResiduals(active, x));
-  const Eigen::Index rows = Z.rows();
-  // CG first, so that Woodbury can take Z over as the fitter's solver does (a copy of Z is 0.8 GB).
+  const Eigen::VectorXd h = -Z->transposeTimes(fit::constraintResiduals(active, x));
+  const Eigen::Index rows = Z->rows();
   fit::ConjugateGradientResult cg{Eigen::VectorXd::Zero(h.size()), 0, 1.0};
   const double tCg =
-      withBaseline ? bench::seconds([&] { cg = fit::solveConjugateGradient(Lsc, Z, h, 1e-6, 20000); }) : 0.0;
+      withBaseline ? bench::seconds([&] { cg = fit::solveConjugateGradient(Lsc, *Z, h, 1e-6, 20000); }) : 0.0;
   Eigen::VectorXd yWoodbury;
   double tFactor = 0, tSetup = 0, tSolve = 0;
   long setupFaults = 0;
@@ -99,7 +98,7 @@ void searchDirection() {
     tFactor = bench::seconds([&] { base.emplace(Lsc); });
     std::optional<fit::WoodburySolver> solver;
     const long faultsBefore = bench::pageFaults();
-    tSetup = bench::seconds([&] { solver.emplace(*base, std::move(Z)); });
+    tSetup = bench::seconds([&] { solver.emplace(*base, std::move(*Z)); });
     setupFaults = bench::pageFaults() - faultsBefore;
     tSolve = bench::seconds([&] { yWoodbury = solver->solve(Eigen::MatrixXd(h)).col(0); });
   });

@@ -81,7 +81,7 @@ TEST(EquilibriumJacobian, AttachedMatchesFiniteDifferences) {
   const Eigen::VectorXd dx = J.apply(ds);
   EXPECT_LT((dx - fd).norm(), 1e-5 * fd.norm());
 
-  const Eigen::MatrixXd Z = J.constraintJacobian(constraintRows(p.markers, p.fem.vertexCount()));
+  const ConstraintJacobian Z = J.constraintJacobian(constraintRows(p.markers, p.fem.vertexCount()));
   const Eigen::VectorXd rowsFd = constraintRows(p.markers, p.fem.vertexCount()) * fd;
   EXPECT_LT((Z * ds - rowsFd).norm(), 1e-5 * rowsFd.norm());
 }

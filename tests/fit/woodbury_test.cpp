@@ -32,7 +32,7 @@ Problem smallProblem() {
 TEST(WoodburySolver, MatchesDenseDirectSolve) {
   const Problem p = smallProblem();
   const SmoothnessBaseSolver base(p.Lsc);
-  const WoodburySolver woodbury(base, p.Z);
+  const WoodburySolver woodbury(base, ConstraintJacobian(p.Z));
   const Eigen::MatrixXd h = Eigen::MatrixXd::Random(p.H.rows(), 3);
   const Eigen::MatrixXd expected = p.H.llt().solve(h);
   const Eigen::MatrixXd y = woodbury.solve(h);
@@ -46,7 +46,7 @@ TEST(WoodburySolver, DampedSolveMatchesDenseDirectSolve) {
   // H + μ (L² + Σψψᵀ) for a few μ, switching μ back and forth on one solver.
   const Problem p = smallProblem();
   const SmoothnessBaseSolver base(p.Lsc);
-  WoodburySolver woodbury(base, p.Z);
+  WoodburySolver woodbury(base, ConstraintJacobian(p.Z));
   const Eigen::MatrixXd psi = plasticLaplacianNullspace(p.Lsc.rows());
   const Eigen::MatrixXd D = p.H - p.Z.transpose() * p.Z + psi * psi.transpose();
   const Eigen::MatrixXd h = Eigen::MatrixXd::Random(p.H.rows(), 2);
@@ -61,15 +61,15 @@ TEST(WoodburySolver, AgreesWithConjugateGradients) {
   const Problem p = smallProblem();
   const SmoothnessBaseSolver base(p.Lsc);
   const Eigen::VectorXd h = Eigen::VectorXd::Random(p.H.rows());
-  const Eigen::VectorXd y = WoodburySolver(base, p.Z).solve(Eigen::MatrixXd(h));
-  const ConjugateGradientResult cg = solveConjugateGradient(p.Lsc, p.Z, h, 1e-13, 100000);
+  const Eigen::VectorXd y = WoodburySolver(base, ConstraintJacobian(p.Z)).solve(Eigen::MatrixXd(h));
+  const ConjugateGradientResult cg = solveConjugateGradient(p.Lsc, ConstraintJacobian(p.Z), h, 1e-13, 100000);
   EXPECT_LT(cg.relativeResidual, 1e-12);
   EXPECT_GT(cg.iterations, 0);
   const double error = (cg.y - y).norm() / y.norm();
   EXPECT_LT(error, 1e-8);
   RecordProperty("relative_difference", testing::PrintToString(error));
   RecordProperty("cg_iterations", cg.iterations);
-  const ConjugateGradientResult capped = solveConjugateGradient(p.Lsc, p.Z, h, 1e-13, 5);
+  const ConjugateGradientResult capped = solveConjugateGradient(p.Lsc, ConstraintJacobian(p.Z), h, 1e-13, 5);
   EXPECT_EQ(capped.iterations, 5);
   EXPECT_GT(capped.relativeResidual, 1e-6);
 }
@@ -78,9 +78,9 @@ TEST(WoodburySolver, RejectsSingularHAndMismatchedSizes) {
   const Problem p = smallProblem();
   const SmoothnessBaseSolver base(p.Lsc);
   // Without constraints H = L² is singular.
-  EXPECT_THROW(WoodburySolver(base, Eigen::MatrixXd(0, p.Z.cols())), NumericalFailure);
-  EXPECT_THROW(WoodburySolver(base, Eigen::MatrixXd(p.Z.leftCols(12))), BadInput);
-  EXPECT_THROW(solveConjugateGradient(p.Lsc, p.Z, Eigen::VectorXd::Ones(5), 1e-8, 10), BadInput);
+  EXPECT_THROW(WoodburySolver(base, ConstraintJacobian(Eigen::MatrixXd(0, p.Z.cols()))), NumericalFailure);
+  EXPECT_THROW(WoodburySolver(base, ConstraintJacobian(Eigen::MatrixXd(p.Z.leftCols(12)))), BadInput);
+  EXPECT_THROW(solveConjugateGradient(p.Lsc, ConstraintJacobian(p.Z), Eigen::VectorXd::Ones(5), 1e-8, 10), BadInput);
 }
 
 }  // namespace

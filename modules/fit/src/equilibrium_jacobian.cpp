@@ -3,9 +3,6 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <utility>
 
@@ -62,18 +59,13 @@ Eigen::MatrixXd EquilibriumJacobian::equilibriumChange(const Eigen::MatrixXd& fo
   return dx;
 }
 
-Eigen::MatrixXd EquilibriumJacobian::constraintJacobian(const Eigen::SparseMatrix<double>& rows) const {
+ConstraintJacobian EquilibriumJacobian::constraintJacobian(const Eigen::SparseMatrix<double>& rows) const {
   // Solve on the side with fewer columns: J itself for a few parameters (the constant-strain stage's 6),
   // otherwise Z = A P E K_ff⁻¹ Eᵀ (−G) = −Wᵀ G with W = K_ff⁻¹ (Pᵀ Aᵀ) on the free coordinates.
-  if (G_.cols() < rows.rows()) return rows * equilibriumChange(Eigen::MatrixXd(G_));
+  if (G_.cols() < rows.rows()) return ConstraintJacobian(Eigen::MatrixXd(rows * equilibriumChange(Eigen::MatrixXd(G_))));
   Eigen::MatrixXd U = Eigen::MatrixXd(rows.transpose());
   if (N_.size()) U -= C_.transpose() * (CNinverse_.transpose() * (N_.transpose() * U));
-  const Eigen::MatrixXd Wt = solvePinned(std::move(U)).transpose();
-  Eigen::MatrixXd Z(Wt.rows(), G_.cols());
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, Wt.rows(), 8), [&](const tbb::blocked_range<Eigen::Index>& r) {
-    Z.middleRows(r.begin(), r.size()) = -(Wt.middleRows(r.begin(), r.size()) * G_);
-  });
-  return Z;
+  return ConstraintJacobian(solvePinned(std::move(U)).transpose(), G_);
 }
 
 Eigen::VectorXd EquilibriumJacobian::apply(const Eigen::VectorXd& ds) const {

@@ -158,7 +158,7 @@ Fitter::Fitter(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd&
       surface_(templ.T), Lsc_(tetAdjacencyLaplacian(templ.T)), base_(Lsc_),
       springStiffness_(attachmentSpringStiffness(fem_, options.attachmentStiffness, markers.attachmentMaterial.rows())),
       x_(PlasticFem::flatten(x0)), s_(s0 / scale_), attached_(markers.attachmentMaterial.rows() > 0) {
-  reuseFreedMemory();  // every iteration allocates and frees Z and the Woodbury blocks, hundreds of MB each
+  reuseFreedMemory();  // every iteration allocates and frees Wᵀ and the Woodbury blocks, about 100 MB each
   if (x0.rows() != templ.V.rows()) throw UsageError("fit: starting positions do not match the template");
   // Un-attached, the landmark stage's 3 rows per pair, less the 6 rigid motions the gauge takes, must fix
   // the 6 constant plastic strains that ½||L s||² leaves free.
@@ -220,15 +220,15 @@ struct Fitter::Linearization {
   std::vector<PointConstraint> active;
   std::unique_ptr<RigidGauge> gauge;
   std::unique_ptr<EquilibriumJacobian> J;
-  // √c A J, in the stage's parameters; the attachments' rows first. Hundreds of MB: full-field stages
-  // hand it over to the Woodbury solver rather than keep a copy.
-  Eigen::MatrixXd Z;
+  // √c A J, in the stage's parameters; the attachments' rows first. Full-field stages hand it over to
+  // the Woodbury solver.
+  std::optional<ConstraintJacobian> Z;
   Eigen::VectorXd r;              // √c (A x + b), the same rows
   Eigen::VectorXd gradient;       // of the objective in the stage's parameters: L² s + Zᵀ r (projected)
   std::unique_ptr<WoodburySolver> woodbury;  // full-field stages
   double dampingScale = 1.0;      // ||Z||² / trace(D): μ = λ · this
   double f0 = 0.0;
-  const Eigen::MatrixXd& constraintJacobian() const { return woodbury ? woodbury->Z() : Z; }
+  const ConstraintJacobian& constraintJacobian() const { return woodbury ? woodbury->Z() : *Z; }
 };
 
 Fitter::Linearization Fitter::linearize(const Stage& stage) {
@@ -243,21 +243,23 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
     // An equilibrium next to a buckling is not definite; the projected stiffness still gives a descent.
     lin.J = std::make_unique<EquilibriumJacobian>(stiffness(true), G, x_, lin.gauge.get(), cholesky_);
   }
-  lin.Z = lin.J->constraintJacobian(stacked(attachmentRows_.rows, constraintRows(lin.active, restV_.rows())));
+  lin.Z.emplace(lin.J->constraintJacobian(stacked(attachmentRows_.rows, constraintRows(lin.active, restV_.rows()))));
   const Eigen::VectorXd held = attachmentRows_.residuals(x_), marked = constraintResiduals(lin.active, x_);
   lin.r.resize(held.size() + marked.size());
   lin.r << held, marked;
   const Eigen::VectorXd smoothGradient = applyPlasticLaplacian(Lsc_, applyPlasticLaplacian(Lsc_, s_));
   if (stage.constantStrain) {
-    lin.gradient = lin.Z.transpose() * lin.r + constantMap_.transpose() * smoothGradient;
-    lin.dampingScale = lin.Z.squaredNorm() / 6.0;  // D restricted to constant fields is #T · I
+    lin.gradient = lin.Z->transposeTimes(lin.r) + constantMap_.transpose() * smoothGradient;
+    lin.dampingScale = lin.Z->squaredNorm() / 6.0;  // D restricted to constant fields is #T · I
   } else {
-    lin.gradient = smoothGradient + lin.Z.transpose() * lin.r;
-    lin.dampingScale = lin.Z.squaredNorm() / (9.0 * Lsc_.squaredNorm() + 6.0);  // trace(D) = Σ ξ² ||Lsc||² + 6
+    lin.gradient = smoothGradient + lin.Z->transposeTimes(lin.r);
+    lin.dampingScale = lin.Z->squaredNorm() / (9.0 * Lsc_.squaredNorm() + 6.0);  // trace(D) = Σ ξ² ||Lsc||² + 6
   }
   lin.dampingScale = std::max(lin.dampingScale, 1e-12);
-  if (!stage.constantStrain)  // factored once, at the damping of its first direction
-    lin.woodbury = std::make_unique<WoodburySolver>(base_, std::move(lin.Z), damping_ * lin.dampingScale);
+  if (!stage.constantStrain) {  // factored once, at the damping of its first direction
+    lin.woodbury = std::make_unique<WoodburySolver>(base_, std::move(*lin.Z), damping_ * lin.dampingScale);
+    lin.Z.reset();
+  }
   lin.f0 = objective(stage.markers, s_, x_);
   return lin;
 }
@@ -265,7 +267,8 @@ Fitter::Linearization Fitter::linearize(const Stage& stage) {
 // The damped Gauss-Newton direction in the stage's parameters: (H + μ D) d = −gradient.
 Eigen::VectorXd Fitter::direction(const Stage& stage, Linearization& lin, double mu, bool refined) const {
   if (stage.constantStrain) {
-    Eigen::Matrix<double, 6, 6> H = lin.Z.transpose() * lin.Z;
+    const Eigen::MatrixXd Z = *lin.Z * Eigen::MatrixXd::Identity(6, 6);
+    Eigen::Matrix<double, 6, 6> H = Z.transpose() * Z;
     H.diagonal().array() += mu * double(T_.rows());
     return H.ldlt().solve(-lin.gradient);
   }

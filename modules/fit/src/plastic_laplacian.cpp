@@ -138,25 +138,6 @@ Eigen::MatrixXd plasticLaplacianNullspace(Index tetCount) {
   return psi;
 }
 
-Eigen::MatrixXd plasticNullspaceProduct(const Eigen::MatrixXd& Z) {
-  const Index m = Z.cols() / 6, C = Z.rows();
-  if (m == 0 || Z.cols() != 6 * m) throw BadInput("", "Z ψ: Z has no columns or not 6 per tet");
-  // Column-major Z (#C by 6#T) read as 6#C by #T: entry (r + C c, t) = Z(r, 6t + c).
-  const Eigen::Map<const Eigen::MatrixXd> Zr(Z.data(), 6 * C, m);
-  constexpr Index kColumnBlock = 1024;
-  const Eigen::VectorXd sums = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<Index>(0, m, kColumnBlock), Eigen::VectorXd(Eigen::VectorXd::Zero(6 * C)),
-      [&](const tbb::blocked_range<Index>& r, Eigen::VectorXd sum) {
-        sum.noalias() += Zr.middleCols(r.begin(), r.size()) * Eigen::VectorXd::Ones(r.size());
-        return sum;
-      },
-      [](Eigen::VectorXd a, const Eigen::VectorXd& b) {
-        a += b;
-        return a;
-      });
-  return Eigen::Map<const Eigen::MatrixXd>(sums.data(), C, 6) / std::sqrt(double(m));
-}
-
 SmoothnessBaseSolver::SmoothnessBaseSolver(const Eigen::SparseMatrix<double>& Lsc) : tetCount_(Lsc.rows()), Lsc_(Lsc) {
   if (tetCount_ == 0 || Lsc.cols() != tetCount_) throw BadInput("", "smoothness solver: empty or non-square Lsc");
   if (!faceConnected(Lsc))
@@ -213,23 +194,26 @@ Eigen::MatrixXd SmoothnessBaseSolver::solve(const Eigen::MatrixXd& h, double smo
   return y;
 }
 
-Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Zpsi) const {
+Eigen::MatrixXd SmoothnessBaseSolver::sandwich(const ConstraintJacobian& Z, const Eigen::MatrixXd& Zpsi) const {
   const Index m = tetCount_, C = Z.rows();
   if (Z.cols() != 6 * m) throw BadInput("", "smoothness solver: Z has the wrong number of columns");
   if (Zpsi.rows() != C || Zpsi.cols() != 6) throw BadInput("", "smoothness solver: Z ψ is not #C by 6");
   // Z (L²)⁺ Zᵀ = Σ_c G_cᵀ G_c / ξ_c² for G_c = Lsc⁺ (Z_cᵀ − mean), one component at a time in one buffer
   // (#T by #C, a sixth of Z): first touches of fresh memory cost 20 µs a page on a virtual machine, more
-  // than the copy that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z). The means of Z_c's
+  // than the work that fills it (bench_fit woodbury: 2-5 s for a buffer as large as Z). The means of Z_c's
   // rows are Z ψ_c / √#T. G_c is row-major with its rows in the factor's order: row i is Z's column
-  // 6 t + c (contiguous) for the tet t of that row, and the supernodal solves and the Gram matrix read
-  // whole rows; the Gram matrix does not depend on the rows' order.
+  // 6 t + c for the tet t of that row, and the supernodal solves and the Gram matrix read whole rows;
+  // the Gram matrix does not depend on the rows' order.
   RowMajorMatrixXd G(m - 1, C);
   Eigen::MatrixXd result = Eigen::MatrixXd::Zero(C, C);
   for (Index c = 0; c < 6; ++c) {
     const Eigen::VectorXd shift = Zpsi.col(c) / std::sqrt(double(m));
     tbb::parallel_for(tbb::blocked_range<Index>(0, m - 1, 1024), [&](const tbb::blocked_range<Index>& r) {
-      for (Index i = r.begin(); i < r.end(); ++i)
-        G.row(i) = (Z.col(6 * groundedOrder_(i) + c) - shift).transpose();
+      for (Index i = r.begin(); i < r.end(); ++i) {
+        Eigen::Map<Eigen::VectorXd> row(G.row(i).data(), C);
+        Z.column(6 * groundedOrder_(i) + c, row);
+        row -= shift;
+      }
     });
     const Eigen::RowVectorXd mean = applyScalarPseudoInverse(G);
     const double weight = 1.0 / weightSquared(c);

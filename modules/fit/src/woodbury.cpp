@@ -2,50 +2,17 @@
 
 #include "vesalius/core/error.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include <cmath>
 #include <string>
 
 namespace vesalius::fit {
 
-namespace {
-
 using Eigen::Index;
 
-constexpr Index kColumnBlock = 4096;
-
-// Z y and Zᵀ x over column blocks of Z in parallel: with few right-hand sides these are memory-bound
-// products that Eigen runs on one thread. The reduction is deterministic so results are reproducible.
-Eigen::MatrixXd multiply(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& y) {
-  return tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<Index>(0, Z.cols(), kColumnBlock), Eigen::MatrixXd(Eigen::MatrixXd::Zero(Z.rows(), y.cols())),
-      [&](const tbb::blocked_range<Index>& r, Eigen::MatrixXd sum) {
-        sum.noalias() += Z.middleCols(r.begin(), r.size()) * y.middleRows(r.begin(), r.size());
-        return sum;
-      },
-      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
-        a += b;
-        return a;
-      });
-}
-
-Eigen::MatrixXd multiplyTransposed(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& x) {
-  Eigen::MatrixXd out(Z.cols(), x.cols());
-  tbb::parallel_for(tbb::blocked_range<Index>(0, Z.cols(), kColumnBlock), [&](const tbb::blocked_range<Index>& r) {
-    out.middleRows(r.begin(), r.size()).noalias() = Z.middleCols(r.begin(), r.size()).transpose() * x;
-  });
-  return out;
-}
-
-}  // namespace
-
-WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z, double mu)
+WoodburySolver::WoodburySolver(const SmoothnessBaseSolver& base, ConstraintJacobian Z, double mu)
     : base_(&base), Z_(std::move(Z)), psi_(plasticLaplacianNullspace(base.tetCount())) {
   if (Z_.cols() != 6 * base.tetCount()) throw BadInput("", "Woodbury solver: Z has the wrong number of columns");
-  Zpsi_ = plasticNullspaceProduct(Z_);
+  Zpsi_ = Z_ * psi_;
   smooth_ = base.sandwich(Z_, Zpsi_);
   setDamping(mu);
 }
@@ -82,14 +49,14 @@ Eigen::MatrixXd WoodburySolver::solveOnce(const Eigen::MatrixXd& h) const {
   const double scale = 1.0 + mu_, root = std::sqrt(scale);
   const Eigen::MatrixXd u = base_->solve(h, scale);
   Eigen::MatrixXd v(C + 6, h.cols());
-  v.topRows(C) = multiply(Z_, u);
+  v.topRows(C) = Z_ * u;
   v.bottomRows(6) = root * (psi_.transpose() * u);
   const Eigen::MatrixXd w = scale_.asDiagonal() * capacitanceLu_.solve(scale_.asDiagonal() * v);
   const double backwardError = (capacitance_ * w - v).norm() / (capacitance_.norm() * w.norm() + v.norm());
   if (!(backwardError <= 1e-10 || v.norm() == 0.0))
     throw NumericalFailure("Woodbury solver: the capacitance solve failed (backward error " +
                            std::to_string(backwardError) + ")");
-  return base_->solve(h - multiplyTransposed(Z_, w.topRows(C)) - root * (psi_ * w.bottomRows(6)), scale);
+  return base_->solve(h - Z_.transposeTimes(w.topRows(C)) - root * (psi_ * w.bottomRows(6)), scale);
 }
 
 Eigen::MatrixXd WoodburySolver::solve(const Eigen::MatrixXd& h) const { return refine(h, solveOnce(h)); }
@@ -106,19 +73,19 @@ Eigen::MatrixXd WoodburySolver::refine(const Eigen::MatrixXd& h, Eigen::MatrixXd
 }
 
 Eigen::MatrixXd WoodburySolver::applyH(const Eigen::MatrixXd& y) const {
-  Eigen::MatrixXd Hy = multiplyTransposed(Z_, multiply(Z_, y)) + mu_ * (psi_ * (psi_.transpose() * y));
+  Eigen::MatrixXd Hy = Z_.transposeTimes(Z_ * y) + mu_ * (psi_ * (psi_.transpose() * y));
   for (Index k = 0; k < y.cols(); ++k)
     Hy.col(k) += (1.0 + mu_) *
                  applyPlasticLaplacian(base_->laplacian(), applyPlasticLaplacian(base_->laplacian(), y.col(k)));
   return Hy;
 }
 
-ConjugateGradientResult solveConjugateGradient(const Eigen::SparseMatrix<double>& Lsc, const Eigen::MatrixXd& Z,
+ConjugateGradientResult solveConjugateGradient(const Eigen::SparseMatrix<double>& Lsc, const ConstraintJacobian& Z,
                                                const Eigen::VectorXd& h, double tolerance, int maxIterations) {
   if (Z.cols() != h.size() || h.size() != 6 * Lsc.rows())
     throw BadInput("", "conjugate gradients: Z, h and Lsc do not have matching sizes");
   const auto applyH = [&](const Eigen::VectorXd& p) -> Eigen::VectorXd {
-    return applyPlasticLaplacian(Lsc, applyPlasticLaplacian(Lsc, p)) + multiplyTransposed(Z, multiply(Z, p));
+    return applyPlasticLaplacian(Lsc, applyPlasticLaplacian(Lsc, p)) + Z.transposeTimes(Z * p);
   };
   const double hNorm = h.norm();
   ConjugateGradientResult result{Eigen::VectorXd::Zero(h.size()), 0, 0.0};

@@ -1,7 +1,8 @@
 // The Jacobian of the equilibrium with respect to the plastic parameters, used without forming it
 // (seed 002 eqs. 10 and 12): J = dx/ds = −K⁻¹ G with K = ∂f/∂x (3#V by 3#V) and G = ∂f/∂s (3#V by 6#T).
 // J is dense (3#V by 6#T); the fitter needs only Z = √c A J for the few constraint rows, so K is
-// factored once and solved for the 3#C columns of (√c A)ᵀ at once: Z = −(K⁻¹ (√c A)ᵀ)ᵀ G.
+// factored once and solved for the 3#C columns of (√c A)ᵀ at once: Z = −(K⁻¹ (√c A)ᵀ)ᵀ G, kept as
+// those two factors (constraint_jacobian.h).
 //
 // Un-attached objects (§3.6): K is singular with the six rigid motions N as its nullspace. Pinning the six
 // degrees of freedom that best determine N makes the rest of K definite and gives one solution of
@@ -10,6 +11,7 @@
 // This is the paper's Singular Lemma (ii) route reached through a pinned, positive-definite factorization.
 #pragma once
 
+#include "vesalius/fit/constraint_jacobian.h"
 #include "vesalius/fit/rigid_gauge.h"
 
 #include "vesalius/fem/sparse_cholesky.h"
@@ -30,7 +32,7 @@ class EquilibriumJacobian {
                       const Eigen::VectorXd& x, const RigidGauge* gauge, SparseCholesky& cholesky);
 
   // Z = √c A J for constraint rows √c A (3#C by 3#V): 3#C by 6#T.
-  Eigen::MatrixXd constraintJacobian(const Eigen::SparseMatrix<double>& rows) const;
+  ConstraintJacobian constraintJacobian(const Eigen::SparseMatrix<double>& rows) const;
   // J ds: the first-order change of the equilibrium (3#V) for a change ds (6#T) of the plastic parameters.
   Eigen::VectorXd apply(const Eigen::VectorXd& ds) const;
 

@@ -7,6 +7,8 @@
 // stand for two entries of Fp (eq. 29).
 #pragma once
 
+#include "vesalius/fit/constraint_jacobian.h"
+
 #include "vesalius/core/mesh.h"
 #include "vesalius/fem/sparse_cholesky.h"
 
@@ -31,10 +33,6 @@ Eigen::VectorXd applyPlasticLaplacian(const Eigen::SparseMatrix<double>& Lsc, co
 // face-connected mesh.
 Eigen::MatrixXd plasticLaplacianNullspace(Eigen::Index tetCount);
 
-// Z ψ (#C by 6) for Z: #C by 6#T (rows tet-major), in one pass over Z: column c is the sum of Z's
-// columns of component c over √#T. Throws BadInput if Z has no columns or not 6 per tet.
-Eigen::MatrixXd plasticNullspaceProduct(const Eigen::MatrixXd& Z);
-
 // Applies B⁻¹ for B = L² − Σᵢ ψᵢψᵢᵀ (eq. 13) without forming B or the rank-6 term. By the Singular
 // Lemma (iii) with αᵢ = −1, B⁻¹h = (L²)⁺h − Σᵢ (ψᵢᵀh) ψᵢ, and since L² = diag(ξ_c²) ⊗ Lsc² acts per
 // component, (L²)⁺ = diag(1/ξ_c²) ⊗ (Lsc⁺)². Lsc⁺ is applied through one sparse Cholesky factorization
@@ -53,10 +51,10 @@ class SmoothnessBaseSolver {
   // 1 in eq. 13; the damped search direction scales L²), with two sparse solves on 6K columns.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& h, double smoothnessScale = 1.0) const;
 
-  // Z: #C by 6#T (rows tet-major), Zpsi: plasticNullspaceProduct(Z). Returns Z (L²)⁺ Zᵀ (#C by #C) with
-  // one sparse solve on 6#C columns: Z (L²)⁺ Zᵀ = Gᵀ G for G = L⁺ Zᵀ, so (L²)⁺ Zᵀ (as large as Z) is
-  // never formed. Z B⁻¹ Zᵀ is this minus (Zψ)(Zψ)ᵀ.
-  Eigen::MatrixXd sandwich(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Zpsi) const;
+  // Z: #C by 6#T (columns tet-major), Zpsi: Z ψ (#C by 6). Returns Z (L²)⁺ Zᵀ (#C by #C) with one sparse
+  // solve on 6#C columns: Z (L²)⁺ Zᵀ = Gᵀ G for G = L⁺ Zᵀ, so neither Z nor (L²)⁺ Zᵀ is formed whole.
+  // Z B⁻¹ Zᵀ is this minus (Zψ)(Zψ)ᵀ.
+  Eigen::MatrixXd sandwich(const ConstraintJacobian& Z, const Eigen::MatrixXd& Zpsi) const;
 
  private:
   // Lsc⁺ on the component-major block X (#T − 1 by n, row-major, rows in the grounded factor's order),

@@ -1,6 +1,6 @@
 // The Gauss-Newton search direction: solve H y = h for H = L² + ZᵀZ (seed 002 §3.4, eqs. 11-14).
 //
-// H is 6#T by 6#T and dense (Z is #C by 6#T, dense, #C = 3 × constraints, a few hundred), so it is never
+// H is 6#T by 6#T and dense (ZᵀZ is; Z is #C by 6#T, #C = 3 × constraints, a few hundred), so it is never
 // formed. WoodburySolver splits H = B + ẐᵀẐ with the invertible sparse-factored B = L² − Σ ψᵢψᵢᵀ and
 // Ẑ = [Z; ψᵀ] (eq. 13) and applies Woodbury's identity (eq. 14):
 //   y = B⁻¹ (h − Ẑᵀ w),  (I + Ẑ B⁻¹ Ẑᵀ) w = Ẑ B⁻¹ h.
@@ -12,6 +12,7 @@
 // re-forms only the small capacitance matrix. The fitter raises μ when the Gauss-Newton step fails.
 #pragma once
 
+#include "vesalius/fit/constraint_jacobian.h"
 #include "vesalius/fit/plastic_laplacian.h"
 
 #include <Eigen/Core>
@@ -22,11 +23,11 @@ namespace vesalius::fit {
 
 class WoodburySolver {
  public:
-  // base: factored once per mesh and must outlive this solver. Z: #C by 6#T (rows tet-major), kept for
-  // the solves; pass it with std::move. mu: the first damping (see setDamping). Throws BadInput on a size
+  // base: factored once per mesh and must outlive this solver. Z: #C by 6#T (columns tet-major), kept
+  // for the solves. mu: the first damping (see setDamping). Throws BadInput on a size
   // mismatch, NumericalFailure if the capacitance matrix is singular (with μ = 0: H is singular, Z does
   // not constrain the nullspace ψ of L, as with fewer landmarks than an un-attached object's rigid motions).
-  WoodburySolver(const SmoothnessBaseSolver& base, Eigen::MatrixXd Z, double mu = 0.0);
+  WoodburySolver(const SmoothnessBaseSolver& base, ConstraintJacobian Z, double mu = 0.0);
 
   // Solves with H + μ (L² + Σψψᵀ) from now on (μ ≥ 0): one LU of the (#C + 6)² capacitance matrix,
   // nothing when μ is the current damping.
@@ -42,7 +43,7 @@ class WoodburySolver {
   // The refinement of solve() from an approximation y of H⁻¹h.
   Eigen::MatrixXd refine(const Eigen::MatrixXd& h, Eigen::MatrixXd y) const;
   // Z as given (#C by 6#T), for callers that handed theirs over.
-  const Eigen::MatrixXd& Z() const { return Z_; }
+  const ConstraintJacobian& Z() const { return Z_; }
 
  private:
   static constexpr int kRefinements = 3;
@@ -52,7 +53,7 @@ class WoodburySolver {
   Eigen::MatrixXd applyH(const Eigen::MatrixXd& y) const;  // L² y + Zᵀ (Z y)
 
   const SmoothnessBaseSolver* base_;
-  Eigen::MatrixXd Z_;
+  ConstraintJacobian Z_;
   Eigen::MatrixXd psi_;     // 6#T by 6, the nullspace of L
   Eigen::MatrixXd smooth_;  // Z (L²)⁺ Zᵀ, #C by #C: the expensive part, computed once
   Eigen::MatrixXd Zpsi_;    // Z ψ, #C by 6
@@ -72,7 +73,7 @@ struct ConjugateGradientResult {
 // Unpreconditioned CG on H y = h with H y = L(L y) + Zᵀ(Z y) applied matrix-free; Lsc: #T by #T,
 // Z: #C by 6#T, h: 6#T. Starts from y = 0 and stops when the relative residual is at most `tolerance`
 // or after `maxIterations`; not converging is reported in the result, not thrown.
-ConjugateGradientResult solveConjugateGradient(const Eigen::SparseMatrix<double>& Lsc, const Eigen::MatrixXd& Z,
+ConjugateGradientResult solveConjugateGradient(const Eigen::SparseMatrix<double>& Lsc, const ConstraintJacobian& Z,
                                                const Eigen::VectorXd& h, double tolerance, int maxIterations);
 
 }  // namespace vesalius::fit
