@@ -16,6 +16,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -66,16 +67,23 @@ class PngFullDisk : public test::FullDiskTest {
 
   // `write` must throw a BadInput whose message starts with one of `outputs` and leave only the filler.
   void expectFails(const std::function<void()>& write, const std::vector<std::string>& outputs, const char* what) {
+    testing::internal::CaptureStderr();
+    std::optional<std::string> message;
     try {
       write();
-      ADD_FAILURE() << what << " reported success";
     } catch (const BadInput& error) {
-      const std::string message = error.what();
-      std::cout << what << ": " << message << "\n";
+      message = error.what();
+    }
+    const std::string printed = testing::internal::GetCapturedStderr();
+    if (!message) {
+      ADD_FAILURE() << what << " reported success";
+    } else {
+      std::cout << what << ": " << *message << "\n";
       bool namesAnOutput = false;
-      for (const std::string& output : outputs) namesAnOutput |= message.rfind(output + ": ", 0) == 0;
+      for (const std::string& output : outputs) namesAnOutput |= message->rfind(output + ": ", 0) == 0;
       EXPECT_TRUE(namesAnOutput) << what << ": the message does not start with an output's name";
-      EXPECT_EQ(message.find('\n'), std::string::npos) << what << ": more than one line";
+      EXPECT_EQ(message->find('\n'), std::string::npos) << what << ": more than one line";
+      EXPECT_EQ(printed, "") << what << ": VTK printed a line of its own";
     }
     EXPECT_EQ(listing(), std::vector<std::string>{"filler"}) << what << " left a file behind";
   }

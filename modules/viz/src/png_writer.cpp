@@ -1,4 +1,5 @@
 // PNG files from RgbImage through vtkPNGWriter (rgb_image.h).
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/viz/rgb_image.h"
 
@@ -6,9 +7,10 @@
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
-#include <filesystem>
+#include <string_view>
 
 namespace vesalius::viz {
 namespace {
@@ -33,13 +35,17 @@ void writePng(const std::string& path, const RgbImage& image, const WriteOptions
   if (image.width <= 0 || image.height <= 0) throw UsageError("cannot write an empty picture to " + path);
   const vtkSmartPointer<vtkImageData> data = toVtk(image);
   writeAtomically(path, options, [&](const std::string& temporary) {
+    // Encoded in memory and written by us: on a full disk libpng and VTK would each print their own
+    // lines on stderr before ours.
     vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(temporary.c_str());
+    writer->WriteToMemoryOn();
     writer->SetInputData(data);
     writer->Write();
-    std::error_code ec;
-    if (writer->GetErrorCode() != 0 || std::filesystem::file_size(temporary, ec) == 0 || ec)
-      throw BadInput(path, "cannot write the PNG file");
+    vtkUnsignedCharArray* png = writer->GetResult();
+    if (writer->GetErrorCode() != 0 || !png || png->GetNumberOfValues() == 0)
+      throw BadInput(path, "cannot encode the PNG file");
+    writeFileBytes(temporary, std::string_view(reinterpret_cast<const char*>(png->GetPointer(0)),
+                                               std::size_t(png->GetNumberOfValues())));
   });
 }
 
