@@ -2,16 +2,19 @@
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
+#include "vesalius/viz/rgb_image.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkInteractorEventRecorder.h>
-#include <vtkPNGWriter.h>
+#include <vtkImageData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkSmartPointer.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 
 namespace vesalius::gui {
@@ -27,18 +30,23 @@ void endLoopOnWindowClose(vtkRenderWindowInteractor* interactor) {
 void writeScreenshot(vtkRenderWindow* window, const std::string& path) {
   auto capture = vtkSmartPointer<vtkWindowToImageFilter>::New();
   capture->SetInput(window);
+  capture->SetInputBufferTypeToRGB();
   capture->ReadFrontBufferOff();
   capture->ShouldRerenderOff();  // what the last render left, views skipped since included
   capture->Update();
-  writeAtomically(path, WriteOptions{true}, [&](const std::string& temporaryPath) {
-    auto png = vtkSmartPointer<vtkPNGWriter>::New();
-    png->SetInputConnection(capture->GetOutputPort());
-    png->SetFileName(temporaryPath.c_str());
-    png->Write();
-    std::error_code ec;
-    if (png->GetErrorCode() != 0 || std::filesystem::file_size(temporaryPath, ec) == 0 || ec)
-      throw BadInput(path, "cannot write the screenshot");
-  });
+  // Written as the other pictures are (viz::writePng), which reports a full disk in one line.
+  vtkImageData* image = capture->GetOutput();
+  const int* size = image->GetDimensions();
+  viz::RgbImage picture;
+  picture.width = size[0];
+  picture.height = size[1];
+  picture.pixels.resize(std::size_t(size[0]) * std::size_t(size[1]) * 3);
+  const auto* rows = static_cast<const std::uint8_t*>(image->GetScalarPointer());
+  const std::size_t rowBytes = std::size_t(size[0]) * 3;
+  for (int y = 0; y < size[1]; ++y)  // VTK's row 0 is the bottom one
+    std::copy_n(rows + rowBytes * std::size_t(size[1] - 1 - y), rowBytes,
+                picture.pixels.begin() + std::ptrdiff_t(rowBytes * std::size_t(y)));
+  viz::writePng(path, picture, WriteOptions{true});
 }
 
 void runEventLoop(vtkRenderWindow* window, vtkRenderWindowInteractor* interactor, const EventScript& script) {
