@@ -52,7 +52,7 @@ ConstraintJacobian::ConstraintJacobian(Eigen::MatrixXd Wt, Eigen::SparseMatrix<d
   if (Wt_.cols() != G_.rows()) throw BadInput("", "constraint Jacobian: Wᵀ and G do not have matching sizes");
 }
 
-// Z = −Z (−I): the same two factors, so one code path serves both.
+// A formed Z as the factors Wᵀ = Z and G = −I, so that one code path serves both.
 ConstraintJacobian::ConstraintJacobian(const Eigen::MatrixXd& Z) : Wt_(Z), G_(minusIdentity(Z.cols())) {}
 
 Eigen::MatrixXd ConstraintJacobian::operator*(const Eigen::Ref<const Eigen::MatrixXd>& y) const {
