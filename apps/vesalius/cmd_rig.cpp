@@ -203,7 +203,7 @@ void addRigCommand(CLI::App& app) {
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
       "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
-      "(about 20 s and 67k tets; at the defaults about 250k tets, 72 s)");
+      "(about 30 s and 23k tets; at the defaults about 140k tets, 90 s)");
   cmd->callback([o] { runRig(*o); });
 }
 

@@ -4,6 +4,7 @@
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace vesalius::rigging {
 
@@ -101,20 +102,58 @@ void keepLargestPart(Grid<Label>& labels, Label id) {
     if (mask.values[v] && !kept.values[v]) labels.values[v] = 0;
 }
 
+// A label's surface and the faces it was given.
+struct BudgetedSurface {
+  meshing::LabelSurface surface;
+  long budget = 0;
+};
+
 // The surfaces of `ids`, each decimated to its share of options.labelFaces (see LabelRegionOptions).
-std::vector<meshing::LabelSurface> budgetedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
-                                                    const LabelRegionOptions& options) {
+std::vector<BudgetedSurface> budgetedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
+                                              const LabelRegionOptions& options) {
   const std::vector<long> faces = voxelFacesOfLabels(map.labels);
   long total = 0;
   for (Label id : ids) total += faces[id];
-  std::vector<meshing::LabelSurface> surfaces;
+  std::vector<BudgetedSurface> surfaces;
   for (Label id : ids) {
     if (faces[id] == 0) continue;
     meshing::SurfaceOptions surface = options.labelSurface;
     surface.targetFaces = int(std::max<long>(options.minLabelFaces, options.labelFaces * faces[id] / total));
-    for (meshing::LabelSurface& s : meshing::labelSurfaces(map, {id}, surface)) surfaces.push_back(std::move(s));
+    for (meshing::LabelSurface& s : meshing::labelSurfaces(map, {id}, surface))
+      surfaces.push_back({std::move(s), surface.targetFaces});
   }
   return surfaces;
+}
+
+// Per label value (65536), the diagonal of its voxels' bounding box, mm.
+std::vector<double> labelExtents(const Grid<Label>& labels) {
+  const Eigen::Vector3i& n = labels.geometry.size;
+  std::vector<Eigen::Vector3i> lo(65536, n), hi(65536, Eigen::Vector3i::Constant(-1));
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const Label l = labels.at(i, j, k);
+        lo[l] = lo[l].cwiseMin(Eigen::Vector3i(i, j, k));
+        hi[l] = hi[l].cwiseMax(Eigen::Vector3i(i, j, k));
+      }
+  std::vector<double> extent(65536, 0.0);
+  for (std::size_t l = 0; l < extent.size(); ++l)
+    if (hi[l].x() >= 0) extent[l] = (hi[l] - lo[l] + Eigen::Vector3i::Ones()).cast<double>().cwiseProduct(labels.geometry.spacing).norm();
+  return extent;
+}
+
+// `map` with each label of closing[id] > 0 closed by that radius (mm) into the voxels of `inside` that
+// carry no chosen label (rank -1).
+Grid<Label> closedLabels(const Grid<Label>& map, const segmentation::Mask& inside, const std::vector<int>& rank,
+                         const std::vector<double>& closing) {
+  Grid<Label> closed = map;
+  for (std::size_t id = 0; id < closing.size(); ++id) {
+    if (closing[id] <= 0) continue;
+    const segmentation::Mask grown = segmentation::closeMm(segmentation::maskOf(map, Label(id)), closing[id]);
+    for (std::size_t v = 0; v < grown.values.size(); ++v)
+      if (grown.values[v] && inside.values[v] && rank[map.values[v]] < 0) closed.values[v] = Label(id);
+  }
+  return closed;
 }
 
 }  // namespace
@@ -129,25 +168,53 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
   if (ids.empty())
     for (std::size_t l = 1; l < rank.size(); ++l) rank[l] = int(l);
   std::vector<meshing::RegionSurface> regions;
-  LabelMap peeled = map;
+  std::optional<LabelMap> body;
   if (options.body > 0) {
     const double voxel = map.labels.geometry.spacing.maxCoeff();
     segmentation::Mask inside = segmentation::nonZeroMask(map.labels);
     if (options.solidBody) inside = segmentation::closeMm(inside, 3 * voxel);
     inside = segmentation::fillBodyHoles(inside);
     if (options.solidBody || options.largestBodyPartOnly) inside = largestFaceConnectedPart(inside);
-    const LabelMap body = segmentation::labelMapOf(inside, {1, "body"});
-    regions.push_back({meshing::labelSurface(body, 1, options.bodySurface), options.body,
+    body = segmentation::labelMapOf(inside, {1, "body"});
+    regions.push_back({meshing::labelSurface(*body, 1, options.bodySurface), options.body,
                        source + " body (all labels, holes filled)"});
-    peeled.labels = peeledLabels(&body.labels, map.labels, rank);
-  } else {
-    peeled.labels = peeledLabels(nullptr, map.labels, rank);
   }
-  if (options.largestPartOnly)
-    for (Label id : ids) keepLargestPart(peeled.labels, id);
-  std::vector<meshing::LabelSurface> surfaces = options.labelFaces > 0 && !ids.empty()
-                                                    ? budgetedSurfaces(peeled, ids, options)
-                                                    : meshing::labelSurfaces(peeled, ids, options.labelSurface, progress);
+  const auto peel = [&](const Grid<Label>& labels) {
+    LabelMap peeled = map;
+    peeled.labels = peeledLabels(body ? &body->labels : nullptr, labels, rank);
+    if (options.largestPartOnly)
+      for (Label id : ids) keepLargestPart(peeled.labels, id);
+    return peeled;
+  };
+  std::vector<meshing::LabelSurface> surfaces;
+  if (options.labelFaces <= 0 || ids.empty()) {
+    surfaces = meshing::labelSurfaces(peel(map.labels), ids, options.labelSurface, progress);
+  } else {
+    // LabelRegionOptions::closeOverBudget: the radius doubles from a voxel while a label's surface stays
+    // above twice its budget, up to a quarter of the label's extent (a hand's bones, scattered and each
+    // a closed surface, would otherwise be closed into the whole arm).
+    const std::vector<double> extent = labelExtents(map.labels);
+    const double voxel = map.labels.geometry.spacing.maxCoeff();
+    std::vector<double> closing(65536, 0.0);
+    std::vector<BudgetedSurface> budgeted;
+    for (;;) {
+      budgeted = budgetedSurfaces(
+          peel(body ? closedLabels(map.labels, segmentation::maskOf(body->labels, 1), rank, closing) : map.labels), ids,
+          options);
+      bool again = false;
+      for (const BudgetedSurface& b : budgeted) {
+        double& r = closing[b.surface.id];
+        const double wider = 2 * std::max(r, voxel / 2);
+        if (!options.closeOverBudget || !body || b.surface.mesh.F.rows() <= 2 * b.budget ||
+            wider > extent[b.surface.id] / 4)
+          continue;
+        r = wider;
+        again = true;
+      }
+      if (!again) break;
+    }
+    for (BudgetedSurface& b : budgeted) surfaces.push_back(std::move(b.surface));
+  }
   for (meshing::LabelSurface& s : surfaces)
     regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});
   return regions;

@@ -33,8 +33,7 @@ namespace vesalius::patient {
 
 struct PatientRigOptions {
   // The whole model's rig: 8 mm voxels keep the hands' bones (at 10 mm some have none) and make the
-  // shipped CT's model about 170,000 tets in about 35 s; TetGen keeps every triangle of the rib cage's
-  // surface, which sets the count above the target (docs/virtual-patient.md).
+  // shipped CT's model about 23,000 tets in about 13 s (docs/virtual-patient.md).
   rigging::RigOptions modelRig = defaultModelRig();
   posing::SkeletonFromBoneMeshesOptions modelBones;
 
