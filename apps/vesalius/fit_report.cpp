@@ -59,7 +59,7 @@ nlohmann::json dihedrals(const fit::MinDihedrals& d) {
 void reportFit(const fit::TemplateFit& f, io::Report& report) {
   const fit::FitMarkers& p = f.markers;
   const fit::FitResult& r = f.rounds.back().result;
-  const fit::SimilarityTransform& t = f.placement.transform;
+  const SimilarityTransform& t = f.placement.transform;
   if (f.repair)
     report.metric("template_repair", {{"boundary_edges", f.repair->boundaryEdges},
                                       {"non_manifold_edges", f.repair->nonManifoldEdges},

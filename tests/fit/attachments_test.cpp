@@ -4,7 +4,7 @@
 // the bone vertex's closest surface point.
 #include "vesalius/fit/attachments.h"
 
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"

@@ -1,5 +1,4 @@
 #include "vesalius/fit/initial_placement.h"
-#include "vesalius/fit/similarity_transform.h"
 
 #include "vesalius/core/error.h"
 
@@ -17,27 +16,6 @@ SimilarityTransform knownTransform() {
   t.rotation = (Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, -0.8, 0.5).normalized())).toRotationMatrix();
   t.translation = Eigen::Vector3d(40, -12, 7);
   return t;
-}
-
-TEST(SimilarityTransform, RecoversAKnownSimilarityAndItsRotationWhenRigid) {
-  const MatrixX3d from = 20 * MatrixX3d::Random(30, 3);
-  const SimilarityTransform truth = knownTransform();
-  const SimilarityTransform fitted = fitSimilarity(from, truth.apply(from), Eigen::VectorXd(), true);
-  EXPECT_NEAR(fitted.scale, 1.3, 1e-12);
-  EXPECT_LT((fitted.rotation - truth.rotation).norm(), 1e-12);
-  EXPECT_LT((fitted.translation - truth.translation).norm(), 1e-10);
-
-  SimilarityTransform rigidTruth = truth;
-  rigidTruth.scale = 1.0;
-  const SimilarityTransform rigid = fitSimilarity(from, rigidTruth.apply(from), Eigen::VectorXd(), false);
-  EXPECT_EQ(rigid.scale, 1.0);
-  EXPECT_LT((rigid.rotation - truth.rotation).norm(), 1e-12);
-}
-
-TEST(SimilarityTransform, RefusesCollinearPoints) {
-  MatrixX3d line(4, 3);
-  line << 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3;
-  EXPECT_THROW(fitSimilarity(line, line, Eigen::VectorXd(), true), BadInput);
 }
 
 // An egg (asymmetric along x) so that only one principal-axis start explains the markers.

@@ -29,7 +29,7 @@ struct PlacedModel {
   std::map<std::string, Eigen::Vector3d> targets;
   SkeletonPlacement placement;
   std::map<std::string, MatrixX3d> localByName;                  // localMeshes by the file name's stem
-  std::map<std::string, fit::SimilarityTransform> digits;        // placeDigits: the hands' bones
+  std::map<std::string, SimilarityTransform> digits;        // placeDigits: the hands' bones
 };
 
 std::string stem(const std::string& file) { return std::filesystem::path(file).stem().string(); }
@@ -37,7 +37,7 @@ std::string stem(const std::string& file) { return std::filesystem::path(file).s
 // A mesh placed as `vesalius reference full-body` places it: digit bones by their own similarity, the rest
 // with their body.
 MatrixX3d placeMesh(const PlacedModel& p, const SkeletonPlacement& placement,
-                    const std::map<std::string, fit::SimilarityTransform>& digits, std::size_t g) {
+                    const std::map<std::string, SimilarityTransform>& digits, std::size_t g) {
   const AttachedGeometry& geometry = p.model.geometry[g];
   const auto digit = digits.find(stem(geometry.meshFile));
   return digit == digits.end()
@@ -159,7 +159,7 @@ TEST(SkeletonPlacement, NeighbouringBodiesAgreeOnTheirJoints) {
   // The torso's four pairs do not fit one similarity: MakeHuman's spine joints run through the middle of
   // the trunk, OpenSim's back joint sits on the vertebral bodies, and the heads lean differently.
   const int torso = p.model.bodies.find("torso");
-  const fit::SimilarityTransform& t = p.placement.bodies[std::size_t(torso)];
+  const SimilarityTransform& t = p.placement.bodies[std::size_t(torso)];
   const double rms = p.placement.rmsResidual[std::size_t(torso)];
   const Eigen::Vector3d atlas = t.apply(
       Eigen::Vector3d(p.model.bodies.restWorld()[std::size_t(torso)] * rajagopalToMakeHuman().landmarks.at(0).offset));
@@ -189,7 +189,7 @@ TEST(SkeletonPlacement, DigitBonesOnMakeHumansFingerBones) {
     ASSERT_EQ(joints.rows(), Eigen::Index(digit.bones.size() + 1));
     double scaleSum = 0;
     for (std::size_t b = 0; b < digit.bones.size(); ++b) {
-      const fit::SimilarityTransform& t = p.digits.at(digit.bones[b]);
+      const SimilarityTransform& t = p.digits.at(digit.bones[b]);
       const auto& [head, tail] = skinBones.at(digit.skinBones[b]);
       const Eigen::Vector3d proximal = t.apply(Eigen::Vector3d(joints.row(Eigen::Index(b)).transpose())),
                             distal = t.apply(Eigen::Vector3d(joints.row(Eigen::Index(b) + 1).transpose()));

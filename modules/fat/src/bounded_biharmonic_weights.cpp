@@ -1,7 +1,7 @@
 #include "vesalius/fat/bounded_biharmonic_weights.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <Eigen/SparseCore>
 #include <tbb/parallel_for.h>

@@ -1,7 +1,7 @@
 #include "vesalius/fem/plastic_tet.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/determinant.h"
+#include "vesalius/linalg/determinant.h"
 
 #include <Eigen/LU>
 

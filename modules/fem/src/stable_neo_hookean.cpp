@@ -1,7 +1,7 @@
 #include "vesalius/fem/stable_neo_hookean.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/determinant.h"
+#include "vesalius/linalg/determinant.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>

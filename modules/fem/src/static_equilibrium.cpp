@@ -1,7 +1,7 @@
 #include "vesalius/fem/static_equilibrium.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <Eigen/LU>
 

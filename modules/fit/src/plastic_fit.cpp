@@ -14,14 +14,14 @@
 #include "vesalius/fit/plastic_laplacian.h"
 #include "vesalius/fit/point_constraints.h"
 #include "vesalius/fit/rigid_gauge.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 #include "vesalius/fit/surface_projection.h"
 #include "vesalius/fit/woodbury.h"
 
 #include "vesalius/fem/plastic_fem.h"
 #include "vesalius/fem/plastic_strain.h"
 #include "vesalius/fem/point_springs.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 #include "vesalius/fem/static_equilibrium.h"
 
 #include "vesalius/core/error.h"

@@ -3,7 +3,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/triangle_tree.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <Eigen/SparseCore>
 

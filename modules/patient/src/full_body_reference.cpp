@@ -149,7 +149,7 @@ FullBodyReference buildFullBodyReference(const FullBodySources& sources, const s
   const transfer::SkeletonPlacement placement = transfer::placeSkeleton(model.bodies, correspondence, joints, frame.axes());
   std::map<std::string, MatrixX3d> localMeshes;
   for (std::size_t m = 0; m < sources.geometry.size(); ++m) localMeshes[sources.geometryNames[m]] = sources.geometry[m].V;
-  const std::map<std::string, fit::SimilarityTransform> digits = transfer::placeDigits(
+  const std::map<std::string, SimilarityTransform> digits = transfer::placeDigits(
       model.bodies, placement, correspondence.digits, localMeshes, transfer::boneSegments(sources.rig));
   // Points of a body's frame (#P by 3) placed as its mesh `name` is: by the body's placement, or by the
   // digit's own fit.

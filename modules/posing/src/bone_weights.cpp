@@ -2,7 +2,7 @@
 #include "vesalius/posing/bone_weights.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

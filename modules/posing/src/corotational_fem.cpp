@@ -5,7 +5,7 @@
 #include "vesalius/posing/linear_blend_skinning.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <tbb/parallel_for.h>
 

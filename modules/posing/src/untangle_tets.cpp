@@ -5,7 +5,7 @@
 #include "rest_rig.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/determinant.h"
+#include "vesalius/linalg/determinant.h"
 
 #include <tbb/parallel_for.h>
 

@@ -6,7 +6,7 @@
 #include "rest_rig.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 #include "vesalius/posing/bone_weights.h"
 
 #include <tbb/parallel_for.h>

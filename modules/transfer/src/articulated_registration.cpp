@@ -122,7 +122,7 @@ void checkParts(const SkinParts& parts, Eigen::Index vertexCount) {
 }
 
 // The x -> c + s R (x − c) minimising Σ w |c + s R (x − c) − y|² (Kabsch about a fixed point c).
-fit::SimilarityTransform fitAboutPoint(const MatrixX3d& from, const MatrixX3d& to, const Eigen::VectorXd& w,
+SimilarityTransform fitAboutPoint(const MatrixX3d& from, const MatrixX3d& to, const Eigen::VectorXd& w,
                                        const Eigen::Vector3d& c, bool allowScale) {
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   double spread = 0;
@@ -131,7 +131,7 @@ fit::SimilarityTransform fitAboutPoint(const MatrixX3d& from, const MatrixX3d& t
     H += w[r] * x * y.transpose();
     spread += w[r] * x.squaredNorm();
   }
-  fit::SimilarityTransform t;
+  SimilarityTransform t;
   if (!(spread > 0)) return t;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const double sign = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
@@ -143,7 +143,7 @@ fit::SimilarityTransform fitAboutPoint(const MatrixX3d& from, const MatrixX3d& t
 
 // Every vertex moved by its own part's transform (no blending: the parts' fits see their own vertices).
 MatrixX3d posedRigidly(const MatrixX3d& Q, const std::vector<int>& partOfVertex,
-                       const std::vector<fit::SimilarityTransform>& T) {
+                       const std::vector<SimilarityTransform>& T) {
   MatrixX3d X(Q.rows(), 3);
   for (Eigen::Index v = 0; v < Q.rows(); ++v) X.row(v) = T[partOfVertex[v]].apply(Eigen::Vector3d(Q.row(v))).transpose();
   return X;
@@ -176,9 +176,9 @@ void selectedPairs(const MatrixX3d& X, const std::vector<detail::Pair>& pairs, c
 
 // Step 3: the parts' transforms. Each pass takes fresh correspondences of the whole skin, then fits the
 // parts in order, parents before children, each from the pairs' current source points.
-std::vector<fit::SimilarityTransform> articulate(const MatrixX3d& Q, const MatrixX3i& Fs, const SkinParts& parts,
+std::vector<SimilarityTransform> articulate(const MatrixX3d& Q, const MatrixX3i& Fs, const SkinParts& parts,
                                                  const detail::Target& target, const ArticulatedRegistrationOptions& o) {
-  std::vector<fit::SimilarityTransform> T(parts.names.size());
+  std::vector<SimilarityTransform> T(parts.names.size());
   std::vector<std::vector<char>> moved, own;
   for (const int part : parts.order) {
     moved.push_back(subtree(parts, part));
@@ -197,8 +197,8 @@ std::vector<fit::SimilarityTransform> articulate(const MatrixX3d& Q, const Matri
       selectedPairs(posedRigidly(Q, parts.partOfVertex, T), pairs, parts.partOfVertex, root ? own[i] : moved[i], from,
                     to, w);
       if (from.rows() < 3) continue;
-      const fit::SimilarityTransform step =
-          root ? fit::fitSimilarity(from, to, w, false)
+      const SimilarityTransform step =
+          root ? fitSimilarity(from, to, w, false)
                : fitAboutPoint(from, to, w, T[parts.parent[part]].apply(parts.joint[part]), o.partScale);
       for (std::size_t p = 0; p < T.size(); ++p)
         if (moved[i][p]) T[p] = detail::compose(step, T[p]);
@@ -209,7 +209,7 @@ std::vector<fit::SimilarityTransform> articulate(const MatrixX3d& Q, const Matri
 
 // Step 4: linear blend skinning with the part weights smoothed over the skin.
 MatrixX3d blendParts(const MatrixX3d& Q, const MatrixX3i& Fs, const SkinParts& parts,
-                     const std::vector<fit::SimilarityTransform>& T, int blendIterations) {
+                     const std::vector<SimilarityTransform>& T, int blendIterations) {
   const Eigen::Index n = Q.rows(), count = Eigen::Index(parts.names.size());
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, count);
   for (Eigen::Index v = 0; v < n; ++v) W(v, parts.partOfVertex[v]) = 1;
@@ -246,7 +246,7 @@ ArticulatedRegistration registerSkinArticulated(const MatrixX3d& Vs, const Matri
                                                 const std::vector<SkinLandmark>& landmarks) {
   checkOptions(options);
   checkParts(parts, Vs.rows());
-  const fit::SimilarityTransform alignment = alignSkin(Vs, Fs, Vt, Ft, options.registration, landmarks);
+  const SimilarityTransform alignment = alignSkin(Vs, Fs, Vt, Ft, options.registration, landmarks);
   SkinParts aligned = parts;
   for (Eigen::Vector3d& joint : aligned.joint) joint = alignment.apply(joint);
   const MatrixX3d Q = alignment.apply(Vs);

@@ -2,7 +2,7 @@
 #include "vesalius/transfer/bone_registration.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include <Eigen/Dense>
 
@@ -75,7 +75,7 @@ AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q) {
   return fitLongBoneMap(P, Q, Eigen::VectorXd::Ones(P.rows()));
 }
 
-// Alternating from the least-squares similarity (fit::fitSimilarity, Umeyama): the rotation by weighted
+// Alternating from the least-squares similarity (fitSimilarity, Umeyama): the rotation by weighted
 // Procrustes of the scaled bone D X onto Y, then the two scales in closed form given the rotation (with
 // z = Rᵀ y: s_along = Σ w (a·x)(a·z) / Σ w (a·x)², s_across = Σ w x⊥·z⊥ / Σ w |x⊥|², or one scale for
 // both, the similarity's, where s_across would exceed s_along).
@@ -88,7 +88,7 @@ AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::Ve
   const Eigen::VectorXd along = X * axis;
   const MatrixX3d across = X - along * axis.transpose();
   const double alongSpread = along.cwiseAbs2().dot(weights), acrossSpread = across.rowwise().squaredNorm().dot(weights);
-  const fit::SimilarityTransform similarity = fit::fitSimilarity(X, Y, weights, true);
+  const SimilarityTransform similarity = fitSimilarity(X, Y, weights, true);
   Eigen::Matrix3d R = similarity.rotation, A = similarity.scale * R;
   for (int iteration = 0; iteration < 50; ++iteration) {
     const MatrixX3d Z = Y * R;  // rows Rᵀ y
@@ -98,7 +98,7 @@ AffineMap fitLongBoneMap(const MatrixX3d& P, const MatrixX3d& Q, const Eigen::Ve
     double sAlong = alongFit / alongSpread, sAcross = acrossSpread > 0 ? acrossFit / acrossSpread : sAlong;
     if (sAcross > sAlong) sAlong = sAcross = (alongFit + acrossFit) / (alongSpread + acrossSpread);
     const Eigen::Matrix3d D = sAlong * axis * axis.transpose() + sAcross * (Eigen::Matrix3d::Identity() - axis * axis.transpose());
-    R = fit::fitSimilarity(X * D, Y, weights, false).rotation;
+    R = fitSimilarity(X * D, Y, weights, false).rotation;
     const Eigen::Matrix3d previous = A;
     A = R * D;
     if ((A - previous).norm() < 1e-12 * A.norm()) break;

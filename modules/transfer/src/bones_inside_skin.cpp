@@ -18,8 +18,8 @@ struct Change {
   Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
   double scale = 1.0;
 
-  fit::SimilarityTransform similarity() const {
-    fit::SimilarityTransform t;
+  SimilarityTransform similarity() const {
+    SimilarityTransform t;
     t.scale = scale;
     t.rotation = turn;
     t.translation = centre + shift - scale * turn * centre;
@@ -61,7 +61,7 @@ Eigen::Matrix<double, 7, 1> changeParameters(const Change& change) {
 // a point moves by δt + ω × r + δs r, r its offset from the centre.
 void addAnchors(const MatrixX3d& anchors, const Change& change, const Eigen::Vector3d& centre, double weight,
                 Eigen::Matrix<double, 7, 7>& normal, Eigen::Matrix<double, 7, 1>& gradient) {
-  const fit::SimilarityTransform now = change.similarity();
+  const SimilarityTransform now = change.similarity();
   for (Eigen::Index a = 0; a < anchors.rows(); ++a) {
     const Eigen::Vector3d at = anchors.row(a).transpose(), moved = now.apply(at), r = moved - centre;
     Eigen::Matrix<double, 3, 7> j;

@@ -51,7 +51,7 @@ SkinSide targetSkinSide(const detail::Target& target) {
 }
 
 struct Alignment {
-  fit::SimilarityTransform transform;
+  SimilarityTransform transform;
   Eigen::Vector3d matchedCentroid = Eigen::Vector3d::Zero();  // of the paired source skin points, rest coordinates
   double meanDistance = std::numeric_limits<double>::infinity();  // of the target's skin vertices
   double score = std::numeric_limits<double>::infinity();  // that, plus the bones' mean distance if any
@@ -74,7 +74,7 @@ struct SidePairs {
   double meanDistance = 0;
 };
 
-SidePairs sidePairs(const AlignedSide& side, const fit::SimilarityTransform& T, double minCos) {
+SidePairs sidePairs(const AlignedSide& side, const SimilarityTransform& T, double minCos) {
   const MatrixX3d X = T.apply(side.sourceV);
   const std::vector<ClosestPoint> closest = TriangleTree(X, side.sourceF).closest(side.target);
   const MatrixX3d N = side.targetNormals ? detail::faceNormals(X, side.sourceF) : MatrixX3d();
@@ -103,7 +103,7 @@ SidePairs sidePairs(const AlignedSide& side, const fit::SimilarityTransform& T, 
 // Step 1 from one start: similarity ICP of the source towards the target's skin vertices (sides[0]) and,
 // if given, its bones (sides[1]); each side weighs as much in the fit as the other. At most `iterations`,
 // fewer once an iteration moves no matched source point by more than toleranceMm.
-Alignment icpFrom(const fit::SimilarityTransform& start, const std::vector<AlignedSide>& sides,
+Alignment icpFrom(const SimilarityTransform& start, const std::vector<AlignedSide>& sides,
                   const PartialSkinRegistrationOptions& options, int iterations, double toleranceMm) {
   const double minCos = std::cos(options.registration.maxNormalAngleDeg * kPi / 180) - 1e-12;
   Alignment a;
@@ -125,8 +125,8 @@ Alignment icpFrom(const fit::SimilarityTransform& start, const std::vector<Align
       w.segment(r, p.from.rows()).setConstant(1.0 / double(std::max<Eigen::Index>(p.from.rows(), 1)));
       r += p.from.rows();
     }
-    const fit::SimilarityTransform previous = a.transform;
-    a.transform = fit::fitSimilarity(from, to, w, true);
+    const SimilarityTransform previous = a.transform;
+    a.transform = fitSimilarity(from, to, w, true);
     a.matchedCentroid = pairs[0].from.colwise().mean().transpose();
     if ((a.transform.apply(pairs[0].from) - previous.apply(pairs[0].from)).rowwise().norm().maxCoeff() < toleranceMm)
       break;
@@ -177,7 +177,7 @@ Alignment alignAlongBodyAxis(const MatrixX3d& Vs, const MatrixX3i& Fs, const Ski
       }
     if (count == 0) continue;
     slab /= count;
-    fit::SimilarityTransform start;
+    SimilarityTransform start;
     start.translation = Eigen::Vector3d(targetCentroid.x() - slab.x(), targetCentroid.y() - slab.y(), targetMiddle - height);
     screened.push_back(icpFrom(start, sides, options, options.alignIterations, 0));
   }
@@ -216,7 +216,7 @@ PartialSkinRegistration registerSkinToPartialTarget(const MatrixX3d& Vs, const M
   const Alignment aligned = alignAlongBodyAxis(Vs, Fs, skin, bones, options);
   // The pose of the best start about the matched part of the source; its scale (the trunk's girth) only
   // with options.scaleSource, else the deformation fits the girth and the continuation fades it out.
-  const fit::SimilarityTransform& t = aligned.transform;
+  const SimilarityTransform& t = aligned.transform;
   result.girthScale = t.scale;
   result.alignmentLinear = options.scaleSource ? Eigen::Matrix3d(t.scale * t.rotation) : t.rotation;
   result.alignmentTranslation = t.scale * t.rotation * aligned.matchedCentroid + t.translation -
@@ -235,7 +235,7 @@ PartialSkinRegistration registerSkinToPartialTarget(const MatrixX3d& Vs, const M
   result.pulled = reached;
 
   result.continuation =
-      fit::fitSimilarity(MatrixX3d(Q(pulledRows, Eigen::all)), MatrixX3d(X(pulledRows, Eigen::all)), Eigen::VectorXd(), false);
+      fitSimilarity(MatrixX3d(Q(pulledRows, Eigen::all)), MatrixX3d(X(pulledRows, Eigen::all)), Eigen::VectorXd(), false);
   const MatrixX3d moved = result.continuation.apply(Q);
   MatrixX3d residual = MatrixX3d::Zero(X.rows(), 3);
   for (const Eigen::Index v : pulledRows) residual.row(v) = X.row(v) - moved.row(v);

@@ -51,7 +51,7 @@ struct PointLookup {
     throw BadInput("", "skeleton placement: no body or landmark '" + name + "' in the model");
   }
   // The skin point `name`, or for kParentPlaced the model point x as `parent` (this pass's) placed it.
-  Eigen::Vector3d target(const std::string& name, const Eigen::Vector3d& x, const fit::SimilarityTransform* parent,
+  Eigen::Vector3d target(const std::string& name, const Eigen::Vector3d& x, const SimilarityTransform* parent,
                          const std::string& body) const {
     if (name == kParentPlaced) {
       if (!parent) throw BadInput("", "skeleton placement: root body '" + body + "' has no parent joint to target");
@@ -64,12 +64,12 @@ struct PointLookup {
 };
 
 // Two pairs: the bone's axis a→b turned onto A→B from the reference rotation, scaled to length.
-fit::SimilarityTransform twoPointFit(const MatrixX3d& from, const MatrixX3d& to, const Eigen::Matrix3d& reference,
+SimilarityTransform twoPointFit(const MatrixX3d& from, const MatrixX3d& to, const Eigen::Matrix3d& reference,
                                      const std::string& body) {
   const Eigen::Vector3d a = from.row(1) - from.row(0), b = to.row(1) - to.row(0);
   if (!(a.norm() > 1e-9 && b.norm() > 1e-9))
     throw BadInput("", "skeleton placement: the two joints of '" + body + "' coincide");
-  fit::SimilarityTransform t;
+  SimilarityTransform t;
   t.scale = b.norm() / a.norm();
   t.rotation = Eigen::Quaterniond::FromTwoVectors(reference * a, b).toRotationMatrix() * reference;
   t.translation = 0.5 * (to.row(0) + to.row(1)).transpose() -
@@ -77,14 +77,14 @@ fit::SimilarityTransform twoPointFit(const MatrixX3d& from, const MatrixX3d& to,
   return t;
 }
 
-fit::SimilarityTransform fitPairs(const MatrixX3d& from, const MatrixX3d& to, const fit::SimilarityTransform* parent,
+SimilarityTransform fitPairs(const MatrixX3d& from, const MatrixX3d& to, const SimilarityTransform* parent,
                                   const Eigen::Matrix3d& skinAxes, const std::string& body) {
-  fit::SimilarityTransform reference;
+  SimilarityTransform reference;
   if (parent)
     reference = *parent;
   else
     reference.rotation = skinAxes;
-  if (from.rows() >= 3) return fit::fitSimilarity(from, to, Eigen::VectorXd(), true);
+  if (from.rows() >= 3) return fitSimilarity(from, to, Eigen::VectorXd(), true);
   if (from.rows() == 2) return twoPointFit(from, to, reference.rotation, body);
   if (from.rows() == 0 && !parent)
     throw BadInput("", "skeleton placement: root body '" + body + "' has no point pairs");
@@ -94,9 +94,9 @@ fit::SimilarityTransform fitPairs(const MatrixX3d& from, const MatrixX3d& to, co
 }
 
 // The pairs' fit, with the scale replaced by `scale` (> 0) and the centroids kept together.
-fit::SimilarityTransform fitBody(const MatrixX3d& from, const MatrixX3d& to, const fit::SimilarityTransform* parent,
+SimilarityTransform fitBody(const MatrixX3d& from, const MatrixX3d& to, const SimilarityTransform* parent,
                                  const Eigen::Matrix3d& skinAxes, const std::string& body, double scale) {
-  fit::SimilarityTransform t = fitPairs(from, to, parent, skinAxes, body);
+  SimilarityTransform t = fitPairs(from, to, parent, skinAxes, body);
   if (scale > 0 && from.rows() > 0) {
     t.scale = scale;
     t.translation = to.colwise().mean().transpose() - scale * t.rotation * from.colwise().mean().transpose();
@@ -135,14 +135,14 @@ std::vector<MatrixX3d> digitBones(const Skeleton& model, int body, const DigitCo
 // One digit's bones onto its skin bones (placeDigits), turning from `previous` (the placed body).
 void placeDigitBones(const MatrixX3d& joints, const DigitCorrespondence& digit,
                      const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones,
-                     fit::SimilarityTransform previous, std::map<std::string, fit::SimilarityTransform>& out) {
+                     SimilarityTransform previous, std::map<std::string, SimilarityTransform>& out) {
   double scaleSum = 0;
   for (std::size_t b = 0; b < digit.bones.size(); ++b) {
     const auto skin = skinBones.find(digit.skinBones[b]);
     if (skin == skinBones.end()) throw BadInput("", "skeleton placement: no skin bone '" + digit.skinBones[b] + "'");
     MatrixX3d to(2, 3);
     to << skin->second.first.transpose(), skin->second.second.transpose();
-    fit::SimilarityTransform t =
+    SimilarityTransform t =
         twoPointFit(joints.middleRows(Eigen::Index(b), 2), to, previous.rotation, digit.bones[b]);
     if (b > 0 && b + 1 == digit.bones.size()) {
       // The tip: the skin bone's tail is at the fingertip's skin, past the bone's end, so the last bone
@@ -236,7 +236,7 @@ SkeletonPlacement placeSkeleton(const Skeleton& model, const SkeletonCorresponde
       const BodyCorrespondence* c = byBody[b];
       const std::size_t n = c ? c->modelPoints.size() : 0;
       const int parent = model.joints[b].parent;
-      const fit::SimilarityTransform* placedParent = parent >= 0 ? &next.bodies[std::size_t(parent)] : nullptr;
+      const SimilarityTransform* placedParent = parent >= 0 ? &next.bodies[std::size_t(parent)] : nullptr;
       MatrixX3d from(n, 3), to(n, 3);
       for (std::size_t i = 0; i < n; ++i) {
         const Eigen::Vector3d x = lookup.modelPoint(c->modelPoints[i]);
@@ -284,11 +284,11 @@ MatrixX3d digitJoints(const std::vector<MatrixX3d>& bones, const Eigen::Vector3d
   return joints;
 }
 
-std::map<std::string, fit::SimilarityTransform> placeDigits(
+std::map<std::string, SimilarityTransform> placeDigits(
     const Skeleton& model, const SkeletonPlacement& placement, const std::vector<DigitCorrespondence>& digits,
     const std::map<std::string, MatrixX3d>& localMeshes,
     const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones) {
-  std::map<std::string, fit::SimilarityTransform> out;
+  std::map<std::string, SimilarityTransform> out;
   for (const DigitCorrespondence& digit : digits) {
     const int body = model.find(digit.body);
     if (body < 0 || std::size_t(body) >= placement.bodies.size())

@@ -110,8 +110,8 @@ Eigen::Vector3d sourcePoint(const MatrixX3d& X, const Pair& p) {
          p.barycentric[2] * X.row(p.vertices[2]).transpose();
 }
 
-fit::SimilarityTransform compose(const fit::SimilarityTransform& second, const fit::SimilarityTransform& first) {
-  fit::SimilarityTransform t;
+SimilarityTransform compose(const SimilarityTransform& second, const SimilarityTransform& first) {
+  SimilarityTransform t;
   t.scale = second.scale * first.scale;
   t.rotation = second.rotation * first.rotation;
   t.translation = second.apply(first.translation);

@@ -5,7 +5,7 @@
 
 #include "vesalius/core/mesh.h"
 #include "vesalius/core/triangle_tree.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 #include "vesalius/transfer/skin_registration.h"
 
 #include <Eigen/Core>
@@ -74,6 +74,6 @@ std::pair<double, double> distances(const std::vector<ClosestPoint>& closest);
 Eigen::Vector3d sourcePoint(const MatrixX3d& X, const Pair& p);
 
 // The transform x -> second(first(x)).
-fit::SimilarityTransform compose(const fit::SimilarityTransform& second, const fit::SimilarityTransform& first);
+SimilarityTransform compose(const SimilarityTransform& second, const SimilarityTransform& first);
 
 }  // namespace vesalius::transfer::detail

@@ -99,17 +99,17 @@ Eigen::Vector3d areaCentroid(const MatrixX3d& V, const MatrixX3i& F) {
 }
 
 // Step 1: landmarks or centroids, then similarity ICP on the pairs above.
-fit::SimilarityTransform similarityAlignment(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3i& Ft,
+SimilarityTransform similarityAlignment(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3i& Ft,
                                      const Target& target, const std::vector<SkinLandmark>& landmarks,
                                      const SkinRegistrationOptions& options) {
-  fit::SimilarityTransform total;
+  SimilarityTransform total;
   if (landmarks.size() >= 3) {
     MatrixX3d from(landmarks.size(), 3), to(landmarks.size(), 3);
     for (std::size_t l = 0; l < landmarks.size(); ++l) {
       from.row(l) = Vs.row(landmarks[l].sourceVertex);
       to.row(l) = landmarks[l].target.transpose();
     }
-    total = fit::fitSimilarity(from, to, Eigen::VectorXd(), true);
+    total = fitSimilarity(from, to, Eigen::VectorXd(), true);
   } else {
     total.translation = areaCentroid(target.V, Ft) - areaCentroid(Vs, Fs);
   }
@@ -124,7 +124,7 @@ fit::SimilarityTransform similarityAlignment(const MatrixX3d& Vs, const MatrixX3
       to.row(p) = pairs[p].target.transpose();
       w[p] = pairs[p].weight;
     }
-    total = detail::compose(fit::fitSimilarity(from, to, w, true), total);
+    total = detail::compose(fitSimilarity(from, to, w, true), total);
   }
   return total;
 }
@@ -200,7 +200,7 @@ MatrixX3d shapeMatchingGoals(const MatrixX3d& Q, const MatrixX3d& Y, const Rings
 
 }  // namespace
 
-fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
                                    const SkinRegistrationOptions& options, const std::vector<SkinLandmark>& landmarks) {
   detail::checkOptions(options);
   checkMesh(Vs, Fs, "source skin");

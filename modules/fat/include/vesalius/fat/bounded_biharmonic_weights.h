@@ -20,7 +20,7 @@
 // primal-dual active set strategy as a semismooth Newton method", SIAM J. Optim. 13(3), 2003): free
 // voxels whose weight left [0, 1] are held at the bound they crossed, held voxels whose multiplier (the
 // gradient g = K w − b) has the wrong sign are released, and the weights are solved again with the held
-// ones fixed (numeric Cholesky, fem/sparse_cholesky.h, the analysis reused: held rows become identity
+// ones fixed (numeric Cholesky, linalg/sparse_cholesky.h, the analysis reused: held rows become identity
 // rows in the same pattern), until the sets repeat; then w and g satisfy the KKT conditions to round-off.
 // Measured: 9 iterations on the two-box bar of tests/fat (of 4,720 free voxels 996 end at 0, 448 at 1),
 // 1–6 per bone group on the full-body reference at 20 mm voxels, 1–15 at 10 mm. The method converges finitely for M-matrices; K = L² is not

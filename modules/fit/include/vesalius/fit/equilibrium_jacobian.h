@@ -14,7 +14,7 @@
 #include "vesalius/fit/constraint_jacobian.h"
 #include "vesalius/fit/rigid_gauge.h"
 
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

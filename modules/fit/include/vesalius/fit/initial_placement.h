@@ -6,7 +6,7 @@
 // face any way), keeping the one with the smallest RMS marker distance.
 #pragma once
 
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include "vesalius/core/mesh.h"
 

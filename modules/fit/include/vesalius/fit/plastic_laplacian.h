@@ -10,7 +10,7 @@
 #include "vesalius/fit/constraint_jacobian.h"
 
 #include "vesalius/core/mesh.h"
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

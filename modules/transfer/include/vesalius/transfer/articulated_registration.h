@@ -37,7 +37,7 @@
 
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/mesh.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 #include "vesalius/transfer/skin_registration.h"
 
 #include <Eigen/Core>
@@ -69,7 +69,7 @@ struct ArticulatedRegistrationOptions {
 struct ArticulatedRegistration {
   SkinRegistration registration;                       // alignment is step 1's
   MatrixX3d articulated;                               // #V by 3: the skin after step 4, mm
-  std::vector<fit::SimilarityTransform> partTransforms;  // per part, acting on the aligned skin
+  std::vector<SimilarityTransform> partTransforms;  // per part, acting on the aligned skin
 };
 
 // Vs, Fs: the reference skin (parts.partOfVertex has a row per vertex); Vt, Ft: the target skin; mm, LPS.

@@ -21,7 +21,7 @@
 
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/mesh.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include <Eigen/Core>
 
@@ -49,7 +49,7 @@ struct InsideSkinOptions {
 };
 
 struct InsideSkinCorrection {
-  fit::SimilarityTransform change;  // world to world, applied after the placement
+  SimilarityTransform change;  // world to world, applied after the placement
   long outsideBefore = 0;           // vertices outside the skin (d > 0) before and after
   long outsideAfter = 0;
 };

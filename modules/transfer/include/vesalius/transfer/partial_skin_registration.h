@@ -43,7 +43,7 @@
 #pragma once
 
 #include "vesalius/core/mesh.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 #include "vesalius/transfer/skin_registration.h"
 
 #include <Eigen/Core>
@@ -84,7 +84,7 @@ struct PartialSkinRegistration {
   Eigen::Matrix3d alignmentLinear = Eigen::Matrix3d::Identity();
   Eigen::Vector3d alignmentTranslation = Eigen::Vector3d::Zero();
   double girthScale = 1;                // step 1's similarity scale: the trunk's girth against the source's
-  fit::SimilarityTransform continuation;  // step 3's S, rigid (maps the aligned source)
+  SimilarityTransform continuation;  // step 3's S, rigid (maps the aligned source)
   double alignmentMeanDistance = 0;     // mean distance of the target's skin vertices to the source under
                                         // step 1's similarity, mm
   double skinMeanDistance = 0;          // mean and largest distance of the target's skin vertices (not cut)

@@ -2,7 +2,7 @@
 // full-body reference anatomy of seed 000 §3: the skin with bones and muscle path points inside it). The
 // skin side comes from seed 004's skeleton alignment (body_frame.h: body frame and head-spine joint) and
 // the skin's rig (MakeHuman's joints); each body's joint centres are mapped onto the matching skin joints:
-//  - 3 or more point pairs: the least-squares similarity (Umeyama; fit/similarity_transform.h);
+//  - 3 or more point pairs: the least-squares similarity (Umeyama; linalg/similarity_transform.h);
 //  - 2 pairs (a long bone: proximal and distal joint): scale = ratio of the joint distances; rotation =
 //    the parent body's (the skin frame's for a root) followed by the smallest rotation that turns the
 //    bone's axis onto the skin's; both joints then land exactly;
@@ -27,7 +27,7 @@
 
 #include "vesalius/core/mesh.h"
 #include "vesalius/core/skeleton.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include <Eigen/Core>
 
@@ -91,7 +91,7 @@ std::map<std::string, Eigen::Vector3d> jointPositions(const Skeleton& skeleton);
 std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> boneSegments(const Skeleton& skeleton);
 
 struct SkeletonPlacement {
-  std::vector<fit::SimilarityTransform> bodies;  // one per model body, model order
+  std::vector<SimilarityTransform> bodies;  // one per model body, model order
   std::vector<double> rmsResidual;               // mm, of each body's point pairs after the fit (0 if < 2)
 };
 
@@ -122,7 +122,7 @@ MatrixX3d digitJoints(const std::vector<MatrixX3d>& bones, const Eigen::Vector3d
 // the skin, past the bone) has the mean scale of the others, its proximal joint on its skin bone's head and
 // its axis along that bone. localMeshes: each named bone's vertices in its body's frame. Throws BadInput
 // naming a body, bone or skin bone that does not exist, or a bone whose joints coincide.
-std::map<std::string, fit::SimilarityTransform> placeDigits(
+std::map<std::string, SimilarityTransform> placeDigits(
     const Skeleton& model, const SkeletonPlacement& placement, const std::vector<DigitCorrespondence>& digits,
     const std::map<std::string, MatrixX3d>& localMeshes,
     const std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>>& skinBones);

@@ -6,7 +6,7 @@
 // source skin follows them through shape matching (Müller et al., "Meshless deformations based on shape
 // matching", SIGGRAPH 2005: §3.3, linear §4.1, clusters §4.3) as in Gilles et al. 2010; the skin's
 // stiffness decreases over the iterations; landmarks give a manual initialisation.
-//  1. Alignment: a similarity transform (fit/similarity_transform.h) of the source, from the landmarks
+//  1. Alignment: a similarity transform (linalg/similarity_transform.h) of the source, from the landmarks
 //     when 3 or more are given, else from the area-weighted centroids, refined by similarity ICP.
 //  2. Each iteration: correspondences from every source vertex to its closest point on the target and,
 //     when symmetric, from every target vertex to its closest point on the source (spread over that
@@ -30,7 +30,7 @@
 #pragma once
 
 #include "vesalius/core/mesh.h"
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include <Eigen/Core>
 
@@ -60,7 +60,7 @@ struct SkinLandmark {
 
 struct SkinRegistration {
   MatrixX3d V;                       // #Vs by 3: source vertex i moved onto the target, mm
-  fit::SimilarityTransform alignment;  // step 1's transform of the source (identity when align is off)
+  SimilarityTransform alignment;  // step 1's transform of the source (identity when align is off)
   std::vector<double> meanDistance;  // #iterations: mean distance of the vertices to the target before each, mm
   double finalMeanDistance = 0;      // mean and largest distance of V to the target surface, mm
   double finalMaxDistance = 0;
@@ -68,7 +68,7 @@ struct SkinRegistration {
 
 // Step 1 alone: the similarity transform that aligns the source to the target (landmarks or centroids,
 // then options.alignIterations of similarity ICP). Arguments and errors as registerSkin's.
-fit::SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
+SimilarityTransform alignSkin(const MatrixX3d& Vs, const MatrixX3i& Fs, const MatrixX3d& Vt, const MatrixX3i& Ft,
                                    const SkinRegistrationOptions& options = {},
                                    const std::vector<SkinLandmark>& landmarks = {});
 

@@ -1,14 +1,15 @@
 // Least-squares similarity (or rigid) transform between paired points (Umeyama, "Least-squares
 // estimation of transformation parameters between two point patterns", IEEE PAMI 13(4), 1991).
-// Used for the initial placement of a template (seed 002 Fig. 1 starts from a rigidly aligned template)
-// and for the rotation-translation step of the un-attached block-coordinate descent (§3.6).
+// The fit uses it for the initial placement of a template (seed 002 Fig. 1 starts from a rigidly aligned
+// template) and for the rotation-translation step of the un-attached block-coordinate descent (§3.6); the
+// transfer for the rigid and similarity steps of its registrations.
 #pragma once
 
 #include "vesalius/core/mesh.h"
 
 #include <Eigen/Core>
 
-namespace vesalius::fit {
+namespace vesalius {
 
 struct SimilarityTransform {
   double scale = 1.0;
@@ -25,4 +26,4 @@ struct SimilarityTransform {
 SimilarityTransform fitSimilarity(const MatrixX3d& from, const MatrixX3d& to, const Eigen::VectorXd& weights,
                                   bool allowScale);
 
-}  // namespace vesalius::fit
+}  // namespace vesalius

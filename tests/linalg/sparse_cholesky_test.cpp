@@ -1,4 +1,4 @@
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include "vesalius/core/error.h"
 

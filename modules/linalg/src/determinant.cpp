@@ -1,4 +1,4 @@
-#include "vesalius/fem/determinant.h"
+#include "vesalius/linalg/determinant.h"
 
 #include <Eigen/Geometry>
 

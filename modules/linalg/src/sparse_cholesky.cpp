@@ -1,7 +1,7 @@
 // SparseCholesky on Eigen's CHOLMOD wrapper. The analysis is kept while the sparsity pattern (outer
 // index and inner index arrays) stays the same, so Newton iterations and Gauss-Newton iterations pay
 // only the numeric factorization.
-#include "vesalius/fem/sparse_cholesky.h"
+#include "vesalius/linalg/sparse_cholesky.h"
 
 #include "vesalius/core/error.h"
 

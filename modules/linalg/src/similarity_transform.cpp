@@ -1,10 +1,10 @@
-#include "vesalius/fit/similarity_transform.h"
+#include "vesalius/linalg/similarity_transform.h"
 
 #include "vesalius/core/error.h"
 
 #include <Eigen/SVD>
 
-namespace vesalius::fit {
+namespace vesalius {
 
 MatrixX3d SimilarityTransform::apply(const MatrixX3d& P) const {
   MatrixX3d Q = (scale * P * rotation.transpose()).rowwise() + translation.transpose();
@@ -35,4 +35,4 @@ SimilarityTransform fitSimilarity(const MatrixX3d& from, const MatrixX3d& to, co
   return t;
 }
 
-}  // namespace vesalius::fit
+}  // namespace vesalius
