@@ -203,7 +203,7 @@ void addRigCommand(CLI::App& app) {
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
       "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
-      "(about 30 s and 23k tets; at the defaults about 140k tets, 90 s)");
+      "(about 25 s and 23k tets; at the defaults about 130k tets, 70 s)");
   cmd->callback([o] { runRig(*o); });
 }
 

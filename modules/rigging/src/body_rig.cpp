@@ -214,7 +214,7 @@ LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double
 // the same budgets, and a bone whose surface stays above twice its share is closed until it meets it
 // (LabelRegionOptions::closeOverBudget): the torso's rib cage, spine, scapulae and skull keep a loop per
 // rib, on which the topology-keeping decimation stopped at 19,940 faces (the demo's model at 8 mm voxels,
-// 157,882 tets for 20,000 asked); closed by 64 mm they take 1,546 faces and the rig 23,361 tets. The
+// 157,882 tets for 20,000 asked); closed until they fit their share, the rig has 22,905 tets. The
 // tissue so filled lies between bones of the one torso joint, which moved it with them before as well.
 std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<std::vector<Label>>& boneLabels,
                                                 Label body, bool solidBody, const RigOptions& o,

@@ -4,6 +4,7 @@
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
+#include <map>
 #include <optional>
 
 namespace vesalius::rigging {
@@ -108,21 +109,17 @@ struct BudgetedSurface {
   long budget = 0;
 };
 
-// The surfaces of `ids`, each decimated to its share of options.labelFaces (see LabelRegionOptions).
-std::vector<BudgetedSurface> budgetedSurfaces(const LabelMap& map, const std::vector<Label>& ids,
-                                              const LabelRegionOptions& options) {
-  const std::vector<long> faces = voxelFacesOfLabels(map.labels);
+// Per label value (65536), its share of options.labelFaces among `ids` in proportion to its voxel faces,
+// at least options.minLabelFaces; 0 for a label without voxels (see LabelRegionOptions).
+std::vector<long> labelShares(const Grid<Label>& labels, const std::vector<Label>& ids,
+                              const LabelRegionOptions& options) {
+  const std::vector<long> faces = voxelFacesOfLabels(labels);
   long total = 0;
   for (Label id : ids) total += faces[id];
-  std::vector<BudgetedSurface> surfaces;
-  for (Label id : ids) {
-    if (faces[id] == 0) continue;
-    meshing::SurfaceOptions surface = options.labelSurface;
-    surface.targetFaces = int(std::max<long>(options.minLabelFaces, options.labelFaces * faces[id] / total));
-    for (meshing::LabelSurface& s : meshing::labelSurfaces(map, {id}, surface))
-      surfaces.push_back({std::move(s), surface.targetFaces});
-  }
-  return surfaces;
+  std::vector<long> shares(65536, 0);
+  for (Label id : ids)
+    if (faces[id] > 0) shares[id] = std::max<long>(options.minLabelFaces, options.labelFaces * faces[id] / total);
+  return shares;
 }
 
 // Per label value (65536), the diagonal of its voxels' bounding box, mm.
@@ -195,25 +192,45 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     // a closed surface, would otherwise be closed into the whole arm).
     const std::vector<double> extent = labelExtents(map.labels);
     const double voxel = map.labels.geometry.spacing.maxCoeff();
+    // The shares are those of the labels as they are, and a label whose voxels a round left as they were
+    // keeps its surface.
     std::vector<double> closing(65536, 0.0);
-    std::vector<BudgetedSurface> budgeted;
+    std::vector<long> shares;
+    std::map<Label, BudgetedSurface> budgeted;
+    Grid<Label> previous;
     for (;;) {
-      budgeted = budgetedSurfaces(
-          peel(body ? closedLabels(map.labels, segmentation::maskOf(body->labels, 1), rank, closing) : map.labels), ids,
-          options);
+      const LabelMap peeled =
+          peel(body ? closedLabels(map.labels, segmentation::maskOf(body->labels, 1), rank, closing) : map.labels);
+      std::vector<bool> changed(65536, shares.empty());
+      if (shares.empty()) {
+        shares = labelShares(peeled.labels, ids, options);
+      } else {
+        for (std::size_t v = 0; v < previous.values.size(); ++v)
+          if (previous.values[v] != peeled.labels.values[v])
+            changed[previous.values[v]] = changed[peeled.labels.values[v]] = true;
+      }
+      for (Label id : ids) {
+        if (!changed[id] || shares[id] == 0) continue;
+        budgeted.erase(id);
+        meshing::SurfaceOptions surface = options.labelSurface;
+        surface.targetFaces = int(shares[id]);
+        for (meshing::LabelSurface& s : meshing::labelSurfaces(peeled, {id}, surface))
+          budgeted.emplace(id, BudgetedSurface{std::move(s), shares[id]});
+      }
+      previous = peeled.labels;
       bool again = false;
-      for (const BudgetedSurface& b : budgeted) {
-        double& r = closing[b.surface.id];
+      for (const auto& [id, b] : budgeted) {
+        double& r = closing[id];
         const double wider = 2 * std::max(r, voxel / 2);
-        if (!options.closeOverBudget || !body || b.surface.mesh.F.rows() <= 2 * b.budget ||
-            wider > extent[b.surface.id] / 4)
+        if (!options.closeOverBudget || !body || b.surface.mesh.F.rows() <= 2 * b.budget || wider > extent[id] / 4)
           continue;
         r = wider;
         again = true;
       }
       if (!again) break;
     }
-    for (BudgetedSurface& b : budgeted) surfaces.push_back(std::move(b.surface));
+    for (Label id : ids)
+      if (auto found = budgeted.find(id); found != budgeted.end()) surfaces.push_back(std::move(found->second.surface));
   }
   for (meshing::LabelSurface& s : surfaces)
     regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});

@@ -42,7 +42,8 @@ struct LabelRegionOptions {
   int minLabelFaces = 100;
   // With labelFaces > 0 and a body: a label whose surface stays above twice its share is closed (into the
   // body's voxels of no chosen label) by one voxel, then by two, four, ... until it meets that bound or
-  // the radius would pass a quarter of the label's extent. Decimation keeps a surface's handles (a rib
+  // the radius would pass a quarter of the label's extent; the shares stay those of the labels before
+  // any closing. Decimation keeps a surface's handles (a rib
   // cage's ribs on the spine and sternum, each a loop): closing fills the tissue between them, which then
   // is a part of the label's region.
   bool closeOverBudget = false;
