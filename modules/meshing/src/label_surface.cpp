@@ -1,9 +1,8 @@
-// The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation; and
-// the one-pass label boxes (label_boxes.h).
+// The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation.
 #include "vesalius/meshing/label_surface.h"
 
 #include "decimate_polydata.h"
-#include "label_boxes.h"
+#include "label_surface_in_box.h"
 #include "restore_volume.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
@@ -19,32 +18,7 @@
 #include <string>
 
 namespace vesalius::meshing {
-namespace detail {
-
-std::vector<LabelBox> labelBoxes(const Grid<Label>& labels) {
-  const Eigen::Vector3i& s = labels.geometry.size;
-  const auto highest = std::max_element(labels.values.begin(), labels.values.end());
-  std::vector<LabelBox> boxes(highest == labels.values.end() ? 0 : std::size_t(*highest) + 1,
-                              LabelBox{s, Eigen::Vector3i::Constant(-1), 0});
-  std::size_t n = 0;  // linear index: i fastest, as Grid stores values
-  for (int k = 0; k < s.z(); ++k)
-    for (int j = 0; j < s.y(); ++j)
-      for (int i = 0; i < s.x(); ++i) {
-        const Label v = labels.values[n++];
-        if (v == 0) continue;  // background, most of a map: no box
-        LabelBox& box = boxes[v];
-        box.lo = box.lo.cwiseMin(Eigen::Vector3i(i, j, k));
-        box.hi = box.hi.cwiseMax(Eigen::Vector3i(i, j, k));
-        ++box.voxels;
-      }
-  return boxes;
-}
-
-}  // namespace detail
-
 namespace {
-
-using detail::LabelBox;
 
 // 1 where the label is, 0 elsewhere, over the box grown by one voxel on every side; image index
 // (0, 0, 0) is grid voxel box.lo - 1. Unit spacing, zero origin: world mapping is done afterwards.
@@ -196,7 +170,7 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
 
 TriMesh labelSurface(const LabelMap& labels, Label id, const SurfaceOptions& options) {
   validate(options);
-  const std::vector<LabelBox> boxes = detail::labelBoxes(labels.labels);
+  const std::vector<LabelBox> boxes = labelBoxes(labels.labels);
   if (id == 0) throw UsageError("label 0 is the background and has no surface");
   if (id >= boxes.size() || boxes[id].voxels == 0)
     throw BadInput("", "label " + std::to_string(id) + " has no voxels");

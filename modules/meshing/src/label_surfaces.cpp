@@ -3,7 +3,7 @@
 // so tasks share nothing but the read-only label map; results keep the requested order.
 #include "vesalius/meshing/label_surface.h"
 
-#include "label_boxes.h"
+#include "label_surface_in_box.h"
 
 #include <tbb/parallel_for.h>
 #include <vtkObjectFactory.h>
@@ -16,7 +16,7 @@ namespace {
 
 // The ids to surface that have voxels, in order: `ids`, else the table's, else every non-zero label present.
 std::vector<Label> labelsToMesh(const LabelMap& labels, const std::vector<Label>& ids,
-                                const std::vector<detail::LabelBox>& boxes) {
+                                const std::vector<LabelBox>& boxes) {
   auto present = [&](Label id) { return id < boxes.size() && boxes[id].voxels > 0; };
   std::vector<Label> wanted = ids;
   if (wanted.empty())
@@ -33,7 +33,7 @@ std::vector<Label> labelsToMesh(const LabelMap& labels, const std::vector<Label>
 
 std::vector<LabelSurface> labelSurfaces(const LabelMap& labels, const std::vector<Label>& ids,
                                         const SurfaceOptions& options, Progress* progress) {
-  const std::vector<detail::LabelBox> boxes = detail::labelBoxes(labels.labels);
+  const std::vector<LabelBox> boxes = labelBoxes(labels.labels);
   std::vector<LabelSurface> surfaces;
   for (Label id : labelsToMesh(labels, ids, boxes)) {
     const LabelEntry* entry = labels.table.find(id);

@@ -1,6 +1,7 @@
 #include "vesalius/rigging/label_regions.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/label_boxes.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
@@ -103,12 +104,6 @@ void keepLargestPart(Grid<Label>& labels, Label id) {
     if (mask.values[v] && !kept.values[v]) labels.values[v] = 0;
 }
 
-// A label's surface and the faces it was given.
-struct BudgetedSurface {
-  meshing::LabelSurface surface;
-  long budget = 0;
-};
-
 // Per label value (65536), its share of options.labelFaces among `ids` in proportion to its voxel faces,
 // at least options.minLabelFaces; 0 for a label without voxels (see LabelRegionOptions).
 std::vector<long> labelShares(const Grid<Label>& labels, const std::vector<Label>& ids,
@@ -124,18 +119,11 @@ std::vector<long> labelShares(const Grid<Label>& labels, const std::vector<Label
 
 // Per label value (65536), the diagonal of its voxels' bounding box, mm.
 std::vector<double> labelExtents(const Grid<Label>& labels) {
-  const Eigen::Vector3i& n = labels.geometry.size;
-  std::vector<Eigen::Vector3i> lo(65536, n), hi(65536, Eigen::Vector3i::Constant(-1));
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i) {
-        const Label l = labels.at(i, j, k);
-        lo[l] = lo[l].cwiseMin(Eigen::Vector3i(i, j, k));
-        hi[l] = hi[l].cwiseMax(Eigen::Vector3i(i, j, k));
-      }
+  const std::vector<LabelBox> boxes = labelBoxes(labels);
   std::vector<double> extent(65536, 0.0);
-  for (std::size_t l = 0; l < extent.size(); ++l)
-    if (hi[l].x() >= 0) extent[l] = (hi[l] - lo[l] + Eigen::Vector3i::Ones()).cast<double>().cwiseProduct(labels.geometry.spacing).norm();
+  for (std::size_t l = 0; l < boxes.size(); ++l)
+    if (boxes[l].voxels > 0)
+      extent[l] = (boxes[l].hi - boxes[l].lo + Eigen::Vector3i::Ones()).cast<double>().cwiseProduct(labels.geometry.spacing).norm();
   return extent;
 }
 
@@ -196,7 +184,7 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     // keeps its surface.
     std::vector<double> closing(65536, 0.0);
     std::vector<long> shares;
-    std::map<Label, BudgetedSurface> budgeted;
+    std::map<Label, meshing::LabelSurface> budgeted;
     Grid<Label> previous;
     for (;;) {
       const LabelMap peeled =
@@ -215,14 +203,14 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
         meshing::SurfaceOptions surface = options.labelSurface;
         surface.targetFaces = int(shares[id]);
         for (meshing::LabelSurface& s : meshing::labelSurfaces(peeled, {id}, surface))
-          budgeted.emplace(id, BudgetedSurface{std::move(s), shares[id]});
+          budgeted.emplace(id, std::move(s));
       }
       previous = peeled.labels;
       bool again = false;
-      for (const auto& [id, b] : budgeted) {
+      for (const auto& [id, s] : budgeted) {
         double& r = closing[id];
         const double wider = 2 * std::max(r, voxel / 2);
-        if (!options.closeOverBudget || !body || b.surface.mesh.F.rows() <= 2 * b.budget || wider > extent[id] / 4)
+        if (!options.closeOverBudget || !body || s.mesh.F.rows() <= 2 * shares[id] || wider > extent[id] / 4)
           continue;
         r = wider;
         again = true;
@@ -230,7 +218,7 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
       if (!again) break;
     }
     for (Label id : ids)
-      if (auto found = budgeted.find(id); found != budgeted.end()) surfaces.push_back(std::move(found->second.surface));
+      if (auto found = budgeted.find(id); found != budgeted.end()) surfaces.push_back(std::move(found->second));
   }
   for (meshing::LabelSurface& s : surfaces)
     regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});

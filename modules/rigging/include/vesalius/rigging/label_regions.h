@@ -43,9 +43,8 @@ struct LabelRegionOptions {
   // With labelFaces > 0 and a body: a label whose surface stays above twice its share is closed (into the
   // body's voxels of no chosen label) by one voxel, then by two, four, ... until it meets that bound or
   // the radius would pass a quarter of the label's extent; the shares stay those of the labels before
-  // any closing. Decimation keeps a surface's handles (a rib
-  // cage's ribs on the spine and sternum, each a loop): closing fills the tissue between them, which then
-  // is a part of the label's region.
+  // any closing. Decimation keeps a surface's handles (a rib cage's ribs on the spine and sternum, each a
+  // loop): closing fills the tissue between them, which then is a part of the label's region.
   bool closeOverBudget = false;
   // Each label kept to its largest face-connected part after the peel (crumbs of a bone left by the peel
   // or by voxels coarser than its plates, such as ribs at 8 mm, would each be a surface of a few faces).
