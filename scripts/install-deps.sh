@@ -10,7 +10,7 @@ if [ "${1:-}" = --check ]; then check=true; shift; fi
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libinsighttoolkit5-dev libvtk9-dev libeigen3-dev libtet1.5-dev
+  libinsighttoolkit5-dev libdcmtk-dev libvtk9-dev libeigen3-dev libtet1.5-dev
   libopenvdb-dev libboost-iostreams-dev libsuitesparse-dev libopenblas-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libx11-dev xvfb xauth clang libclang-rt-14-dev

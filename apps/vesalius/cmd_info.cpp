@@ -3,6 +3,7 @@
 #include "posing_session.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/dicom_series.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/label_table_io.h"
@@ -145,11 +146,34 @@ void printSegmentation(const InfoOptions& o) {
               << seg.segments[overlap.second].name << "' share " << overlap.voxels << " voxels\n";
 }
 
+void printDicomSeg(const InfoOptions& o) {
+  const io::DicomSegmentation seg = io::readDicomSeg(o.file);
+  const GridGeometry& g = seg.labelMap.labels.geometry;
+  std::cout << o.file << ": DICOM segmentation, " << seg.labelMap.table.entries.size() << " segments\n"
+            << "  size         " << g.size.x() << " x " << g.size.y() << " x " << g.size.z() << " voxels\n"
+            << "  spacing      " << g.spacing.x() << " x " << g.spacing.y() << " x " << g.spacing.z() << " mm\n"
+            << "  origin       " << vec(g.origin) << " mm, LPS\n";
+  if (seg.source)
+    std::cout << "  refers to    series " << seg.source->seriesInstanceUid << " (" << seg.source->images.size()
+              << " images) of study " << seg.source->studyInstanceUid << '\n';
+  std::cout << "     id     voxels  colour       name\n";
+  const std::vector<Label>& values = seg.labelMap.labels.values;
+  for (const LabelEntry& e : seg.labelMap.table.entries) {
+    char line[96];
+    std::snprintf(line, sizeof line, "  %5u  %9lld  %3u %3u %3u  ", unsigned(e.id),
+                  (long long)std::count(values.begin(), values.end(), e.id), unsigned(e.color[0]),
+                  unsigned(e.color[1]), unsigned(e.color[2]));
+    std::cout << line << e.name << '\n';
+  }
+}
+
 void runInfo(const InfoOptions& o) {
   if (!fs::exists(o.file)) throw BadInput(o.file, "no such file or folder");
   const std::string ext = fileExtension(o.file);
   if (ext == ".seg.nrrd")
     printSegmentation(o);
+  else if (ext == ".dcm" && io::isDicomSegFile(o.file))
+    printDicomSeg(o);
   else if (fs::is_directory(o.file) || ext == ".nii" || ext == ".nii.gz" || ext == ".nrrd" || ext == ".nhdr" ||
       ext == ".mha" || ext == ".mhd" || ext == ".dcm")
     printScan(o);
@@ -173,7 +197,7 @@ void runInfo(const InfoOptions& o) {
 
 void addInfoCommand(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe a scan, mesh, marker, motion, skeleton or label-table file");
+  CLI::App* cmd = app.add_subcommand("info", "Describe a scan, segmentation, mesh, marker, motion, skeleton or label-table file");
   cmd->add_option("file", o->file, "File, or DICOM folder")->required();
   cmd->add_option("--series", o->series, "DICOM series UID, for a folder holding several");
   cmd->add_option("--scan", o->scan, "Scan an ITK-SNAP .annot file was made on (for its voxel geometry)");

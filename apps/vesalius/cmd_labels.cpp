@@ -29,7 +29,7 @@ namespace seg = segmentation;
 using E = seg::MaskEdit;
 
 struct LabelsOptions {
-  std::string labels, table, out;
+  std::string labels, table, out, dicomSeries;
   std::vector<std::string> selected;  // --label, or --to-label for crop
   std::string into;                   // merge: ID[:NAME]
   std::vector<std::string> maps;      // relabel: OLD=NEW
@@ -201,13 +201,14 @@ void runLabels(const LabelsOptions& o, const std::string& action, const Action& 
   report.input("labels", o.labels);
   if (!o.table.empty()) report.input("table", o.table);
   refuseInputsAsOutputs(o.labels, o.table, o.out);
+  checkDicomSeriesOption(o.dicomSeries, o.out);
   const Input in(o);
   Edit e;
   {
     auto timer = report.time(action);
     e = act(in, report);
   }
-  writeLabelsOutputs(in, e.map, e.rows, o.out, o.common, report);
+  writeLabelsOutputs(in, e.map, e.rows, o.out, o.dicomSeries, o.common, report);
 }
 
 // One action: --labels, --table, then its own options (`addOwn`), then --out and the common options.
@@ -215,11 +216,11 @@ void addAction(CLI::App& labels, const std::string& name, const std::string& des
                const Action& act, const std::function<void(CLI::App&, LabelsOptions&)>& addOwn) {
   auto o = std::make_shared<LabelsOptions>();
   CLI::App* cmd = labels.add_subcommand(name, description);
-  cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage)")->required();
+  cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage, .seg.nrrd, DICOM SEG)")->required();
   cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
   addOwn(*cmd, *o);
-  cmd->add_option("--out", o->out, "Label map to write (.nii.gz, .nrrd, .mha); a .tsv label table goes beside it")
-      ->required();
+  cmd->add_option("--out", o->out, kOutHelp)->required();
+  cmd->add_option("--dicom-series", o->dicomSeries, kDicomSeriesHelp);
   addCommonOptions(*cmd, o->common);
   cmd->footer("Example:\n  " + example);
   cmd->callback([o, name, act] { runLabels(*o, name, act); });

@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "vesalius/core/atomic_file.h"
+#include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/mri_tissues.h"
@@ -9,6 +10,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 namespace vesalius::cli {
 
@@ -55,6 +57,9 @@ void runSegment(const SegmentOptions& o) {
     auto timer = report.time("read scan");
     scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
   }
+  // A DICOM SEG refers to the series it was made from, when the scan is one.
+  const std::optional<io::DicomSourceSeries> source =
+      io::isDicomSegPath(o.out) ? io::readDicomSource(o.scan, o.series) : std::nullopt;
   LabelMap labels;
   {
     auto timer = report.time("segment");
@@ -64,7 +69,8 @@ void runSegment(const SegmentOptions& o) {
   std::vector<std::string> outputs = io::labelMapFiles(o.out);
   outputs.push_back(png);
   writeFilesAtomically(outputs, o.common.writeOptions(), [&](const std::vector<std::string>& files) {
-    io::writeLabelMap(files.front(), labels);
+    if (source) io::writeDicomSeg(files.front(), labels, &*source);
+    else io::writeLabelMap(files.front(), labels);
     viz::writeSliceOverlayPng(scan, labels, files.back());
   });
   report.output("labels", o.out);
@@ -89,7 +95,8 @@ void addSegmentCommand(CLI::App& app) {
   slicerParameter(cmd->add_option("--out", o->out,
                                   "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for "
                                   "Vesalius (.tsv), 3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer "
-                                  "segmentation (.seg.nrrd)")
+                                  "segmentation (.seg.nrrd); or a DICOM segmentation for PACS (.dcm), which refers "
+                                  "to the scan's series when the scan is DICOM")
                       ->required(),
                   SlicerKind::LabelImage, true, ".nrrd,.nii.gz,.mha");
   cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");
@@ -97,7 +104,7 @@ void addSegmentCommand(CLI::App& app) {
   addCommonOptions(*cmd, o->common);
   cmd->footer("Examples:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct "
               "--out labels.nii.gz\n  vesalius segment --scan testdata/head-mri/ch2.nii.gz --modality mri "
-              "--out head.nii.gz");
+              "--out head.nii.gz\n  vesalius segment --scan ct-series/ --modality ct --out labels.seg.dcm");
   cmd->callback([o] { runSegment(*o); });
 }
 

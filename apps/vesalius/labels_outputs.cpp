@@ -1,11 +1,13 @@
 #include "labels_outputs.h"
 
+#include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <utility>
 
 namespace vesalius::cli {
@@ -65,9 +67,22 @@ void refuseInputsAsOutputs(const std::string& labels, const std::string& table, 
     }
 }
 
+void checkDicomSeriesOption(const std::string& dicomSeries, const std::string& out) {
+  if (!dicomSeries.empty() && !io::isDicomSegPath(out))
+    throw UsageError("--dicom-series names the series a DICOM segmentation refers to; give an --out ending .dcm");
+}
+
 void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
-                        const std::string& out, const CommonOptions& common, io::Report& report) {
-  io::writeLabelMap(out, edited, common.writeOptions());
+                        const std::string& out, const std::string& dicomSeries, const CommonOptions& common,
+                        io::Report& report) {
+  if (io::isDicomSegPath(out)) {
+    const std::optional<io::DicomSourceSeries> source =
+        io::readDicomSource(dicomSeries.empty() ? input.path : dicomSeries);
+    io::writeDicomSeg(out, edited, source ? &*source : nullptr, common.writeOptions());
+    if (source) report.input("dicom_series", dicomSeries.empty() ? input.path : dicomSeries);
+  } else {
+    io::writeLabelMap(out, edited, common.writeOptions());
+  }
   const std::string table = io::labelTableSidecarPath(out);
   report.output("labels", out);
   report.output("table", table);

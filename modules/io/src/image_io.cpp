@@ -6,6 +6,7 @@
 #include "raw_geometry.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/label_table_io.h"
 #include "vesalius/io/slicer_segmentation.h"
 
@@ -317,9 +318,17 @@ ScanInfo describeScan(const std::string& path, const ScanReadOptions& options) {
 
 LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
   const ScanFormat format = scanFormatOf(path);
-  if (format == ScanFormat::DicomFile || format == ScanFormat::DicomFolder)
-    throw BadInput(path, "label maps are read from NIfTI, NRRD or MetaImage files, not DICOM");
   LabelMap labelMap;
+  if (format == ScanFormat::DicomFile) {
+    // A DICOM SEG names its segments; an explicit table still wins. Other DICOM files are refused there.
+    labelMap = readDicomSeg(path).labelMap;
+    if (!tablePath.empty()) labelMap.table = readLabelTable(tablePath);
+    nameUnlistedLabels(labelMap.labels.values, labelMap.table);
+    return labelMap;
+  }
+  if (format == ScanFormat::DicomFolder)
+    throw BadInput(path, "label maps are read from NIfTI, NRRD, MetaImage or DICOM segmentation files, not a DICOM "
+                         "folder");
   if (isSlicerSegmentationPath(path)) {
     // The segments name themselves; an explicit table still wins.
     labelMap = mergeSegmentationLayers(readSlicerSegmentation(path), path);
@@ -335,6 +344,7 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
 
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options) {
   if (isSlicerSegmentationPath(path)) return writeSlicerSegmentation(path, labelMap, options);
+  if (isDicomSegPath(path)) return writeDicomSeg(path, labelMap, nullptr, options);
   checkWritableFormat(path);
   const Grid<Label>& labels = labelMap.labels;
   checkValueCount(labels.geometry, labels.values.size(), path);
@@ -352,17 +362,18 @@ void writeLabelMap(const std::string& path, const LabelMap& labelMap, const Writ
 
 std::vector<std::string> labelMapFiles(const std::string& path) {
   std::vector<std::string> files{path};
-  if (isSlicerSegmentationPath(path)) return files;
+  if (isSlicerSegmentationPath(path) || isDicomSegPath(path)) return files;
   for (const std::string& table : labelTableSidecarPaths(path)) files.push_back(table);
   return files;
 }
 
 std::string labelTableSidecarPath(const std::string& labelMapPath) {
-  return isSlicerSegmentationPath(labelMapPath) ? labelMapPath : pathStem(labelMapPath) + ".tsv";
+  return isSlicerSegmentationPath(labelMapPath) || isDicomSegPath(labelMapPath) ? labelMapPath
+                                                                                : pathStem(labelMapPath) + ".tsv";
 }
 
 std::vector<std::string> labelTableSidecarPaths(const std::string& labelMapPath) {
-  if (isSlicerSegmentationPath(labelMapPath)) return {};
+  if (isSlicerSegmentationPath(labelMapPath) || isDicomSegPath(labelMapPath)) return {};
   const std::string stem = pathStem(labelMapPath);
   return {stem + ".tsv", stem + ".ctbl", stem + ".label.txt"};
 }

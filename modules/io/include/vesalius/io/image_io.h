@@ -62,26 +62,28 @@ ScanInfo describeScan(const std::string& path, const ScanReadOptions& options = 
 // CSV is passed over), `<stem>.txt` (label_table_io.h); labels present in the image but not in the table are
 // named "label_<id>" with defaultLabelColor(id).
 // A 3D Slicer segmentation (.seg.nrrd) names its own segments (slicer_segmentation.h); its layers are
-// merged into one map, and overlapping segments throw BadInput naming them.
+// merged into one map, and overlapping segments throw BadInput naming them. A DICOM file is read as a DICOM
+// SEG (dicom_seg.h); any other DICOM file throws BadInput.
 LabelMap readLabelMap(const std::string& path, const std::string& tablePath = "");
 
 // Writes the labels (uint8 if every id is below 256, else uint16) and the table three times beside them,
 // so that 3D Slicer and ITK-SNAP find names and colours too (labelTableSidecarPaths: our TSV, a Slicer
 // colour table, an ITK-SNAP label description file), all or none (writeFilesAtomically); none is written if
 // any exists and !options.force.
-// A path ending .seg.nrrd is written as a Slicer segmentation carrying the table itself, without sidecars.
+// A path ending .seg.nrrd is written as a Slicer segmentation carrying the table itself, without sidecars;
+// one ending .dcm as a DICOM SEG without a source series (dicom_seg.h), also without sidecars.
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options = {});
 
-// The files writeLabelMap(path) writes: the path, then its sidecar tables (none for a .seg.nrrd), so that a
+// The files writeLabelMap(path) writes: the path, then its sidecar tables (none for .seg.nrrd, .dcm), so that a
 // caller can write them together with other outputs (writeFilesAtomically).
 std::vector<std::string> labelMapFiles(const std::string& path);
 
 // The file that holds a label map's table: "<stem>.tsv" beside it ("seg/body.nii.gz" -> "seg/body.tsv"),
-// or the path itself for a .seg.nrrd.
+// or the path itself for a .seg.nrrd or .dcm.
 std::string labelTableSidecarPath(const std::string& labelMapPath);
 
 // Every table writeLabelMap writes beside a label map: "seg/body.nii.gz" -> "seg/body.tsv",
-// "seg/body.ctbl" (3D Slicer), "seg/body.label.txt" (ITK-SNAP); none for a .seg.nrrd.
+// "seg/body.ctbl" (3D Slicer), "seg/body.label.txt" (ITK-SNAP); none for a .seg.nrrd or .dcm.
 std::vector<std::string> labelTableSidecarPaths(const std::string& labelMapPath);
 
 }  // namespace vesalius::io

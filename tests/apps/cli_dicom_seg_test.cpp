@@ -1,0 +1,201 @@
+// DICOM SEG output through the `vesalius` program: `segment --out X.dcm` on the shipped DICOM series
+// (dcmqi's 3-slice CT; TotalSegmentator's JPEG 2000 series, anonymised without study and series UIDs)
+// read back with DCMTK and with our reader against `segment --out X.nii.gz`; `labels` passing the
+// references on; `info` on a SEG; a cut file refused in one line.
+#include "run_command.h"
+
+#include "vesalius/core/atomic_file.h"
+#include "vesalius/io/dicom_seg.h"
+#include "vesalius/io/image_io.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmseg/segdoc.h>
+#include <dcmtk/dcmseg/segment.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+
+namespace vesalius::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = VESALIUS_TESTDATA;
+const std::string kSegSopClass = "1.2.840.10008.5.1.4.1.1.66.4";
+
+std::string fresh(const std::string& name) {
+  const fs::path path = fs::path(outputDir()) / name;
+  fs::remove(path);
+  for (const std::string& table : io::labelTableSidecarPaths(path.string())) fs::remove(table);
+  const std::string stem = path.string().substr(0, path.string().size() - fileExtension(path.string()).size());
+  fs::remove(stem + ".png");  // segment's picture
+  return path.string();
+}
+
+std::string element(DcmItem& item, const DcmTagKey& tag) {
+  OFString value;
+  item.findAndGetOFStringArray(tag, value);
+  return value.c_str();
+}
+
+// Series, study and frame of reference UIDs and SOP instance UIDs (dataset, else meta header) of a folder.
+struct SourceUids {
+  std::string series, study, frameOfReference;
+  std::set<std::string> instances;
+};
+
+SourceUids sourceUids(const std::string& folder) {
+  SourceUids uids;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    DcmFileFormat file;
+    if (file.loadFile(entry.path().c_str()).bad()) continue;
+    DcmDataset& data = *file.getDataset();
+    uids.series = element(data, DCM_SeriesInstanceUID);
+    uids.study = element(data, DCM_StudyInstanceUID);
+    uids.frameOfReference = element(data, DCM_FrameOfReferenceUID);
+    std::string instance = element(data, DCM_SOPInstanceUID);
+    if (instance.empty()) instance = element(*file.getMetaInfo(), DCM_MediaStorageSOPInstanceUID);
+    uids.instances.insert(instance);
+  }
+  return uids;
+}
+
+// Segments the series twice, as a SEG and as NIfTI, and checks the SEG against the NIfTI and the source.
+void checkSegmentedSeries(const std::string& folder, const std::string& name) {
+  const std::string seg = fresh(name + ".seg.dcm"), nifti = fresh(name + ".nii.gz");
+  CommandResult r = runVesalius({"segment", "--scan", folder, "--modality", "ct", "--out", seg});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = runVesalius({"segment", "--scan", folder, "--modality", "ct", "--out", nifti});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_FALSE(fs::exists(fs::path(seg).replace_extension(".tsv")));  // the SEG carries its names
+
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(seg.c_str()).good());
+  DcmDataset& data = *file.getDataset();
+  EXPECT_EQ(element(data, DCM_SOPClassUID), kSegSopClass);
+  const SourceUids source = sourceUids(folder);
+  EXPECT_EQ(element(data, DCM_FrameOfReferenceUID), source.frameOfReference);
+  DcmItem* series = nullptr;
+  if (source.series.empty()) {
+    // An anonymised series: its images cannot be listed under it.
+    EXPECT_TRUE(data.findAndGetSequenceItem(DCM_ReferencedSeriesSequence, series, 0).bad());
+  } else {
+    EXPECT_EQ(element(data, DCM_StudyInstanceUID), source.study);
+    ASSERT_TRUE(data.findAndGetSequenceItem(DCM_ReferencedSeriesSequence, series, 0).good());
+    EXPECT_EQ(element(*series, DCM_SeriesInstanceUID), source.series);
+    std::set<std::string> referenced;
+    DcmItem* instance = nullptr;
+    for (long n = 0; series->findAndGetSequenceItem(DCM_ReferencedInstanceSequence, instance, n).good(); ++n)
+      referenced.insert(element(*instance, DCM_ReferencedSOPInstanceUID));
+    EXPECT_EQ(referenced, source.instances);
+  }
+
+  DcmSegmentation* raw = nullptr;
+  ASSERT_TRUE(DcmSegmentation::loadFile(seg.c_str(), raw).good());
+  std::unique_ptr<DcmSegmentation> dcmtk(raw);
+  const LabelMap expected = io::readLabelMap(nifti);
+  std::set<std::string> dcmtkNames, expectedNames;
+  for (std::size_t n = 1; n <= dcmtk->getNumberOfSegments(); ++n) {
+    OFString label;
+    dcmtk->getSegment(n)->getSegmentLabel(label);
+    dcmtkNames.insert(label.c_str());
+  }
+  for (const LabelEntry& e : expected.table.entries)
+    if (std::count(expected.labels.values.begin(), expected.labels.values.end(), e.id)) expectedNames.insert(e.name);
+  EXPECT_EQ(dcmtkNames, expectedNames);
+
+  const io::DicomSegmentation back = io::readDicomSeg(seg);
+  const GridGeometry &a = back.labelMap.labels.geometry, &b = expected.labels.geometry;
+  const Eigen::Vector3d corner = b.size.cast<double>() - Eigen::Vector3d::Ones();
+  const double error = std::max({(a.origin - b.origin).norm(), (a.spacing - b.spacing).cwiseAbs().maxCoeff(),
+                                 (a.indexToWorld(corner) - b.indexToWorld(corner)).norm()});
+  std::size_t differing = 0;
+  for (std::size_t n = 0; n < expected.labels.values.size(); ++n)
+    differing += back.labelMap.labels.values[n] != expected.labels.values[n];
+  std::cout << name << ": " << dcmtk->getNumberOfFrames() << " frames, " << fs::file_size(seg) << " bytes, "
+            << dcmtkNames.size() << " segments, geometry differs by " << error << " mm, " << differing
+            << " voxels differ from the NIfTI\n";
+  EXPECT_EQ(a.size, b.size);
+  EXPECT_LT(error, 1e-3);
+  EXPECT_EQ(differing, 0u);
+  for (const LabelEntry& e : back.labelMap.table.entries) {
+    ASSERT_NE(expected.table.find(e.id), nullptr) << e.id;
+    EXPECT_EQ(e.name, expected.table.find(e.id)->name);
+  }
+  if (!source.series.empty()) {
+    ASSERT_TRUE(back.source);
+    EXPECT_EQ(back.source->seriesInstanceUid, source.series);
+  }
+}
+
+TEST(CliDicomSeg, SegmentWritesASegReferringToTheDcmqiSeries) {
+  checkSegmentedSeries(kData + "/dicom/ct-3slice-dcmqi/ct-3slice", "ct-3slice");
+}
+
+TEST(CliDicomSeg, SegmentOfAnAnonymisedSeriesKeepsItsFrameOfReference) {
+  checkSegmentedSeries(kData + "/dicom/ct-series-jpeg2000", "ct-jpeg2000");
+}
+
+TEST(CliDicomSeg, LabelsPassesTheReferencesOnAndInfoDescribesTheSeg) {
+  const std::string folder = kData + "/dicom/ct-3slice-dcmqi/ct-3slice";
+  const std::string seg = fresh("labels-in.seg.dcm"), bone = fresh("bone.dcm"), nifti = fresh("labels-in.nii.gz"),
+                    fromNifti = fresh("bone-from-nifti.dcm");
+  ASSERT_EQ(runVesalius({"segment", "--scan", folder, "--out", seg}).exitCode, 0);
+  CommandResult r = runVesalius({"labels", "extract", "--labels", seg, "--label", "bone", "--out", bone});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const SourceUids source = sourceUids(folder);
+  const io::DicomSegmentation extracted = io::readDicomSeg(bone);
+  ASSERT_EQ(extracted.labelMap.table.entries.size(), 1u);
+  EXPECT_EQ(extracted.labelMap.table.entries.front().name, "bone");
+  ASSERT_TRUE(extracted.source);
+  EXPECT_EQ(extracted.source->seriesInstanceUid, source.series);
+  EXPECT_EQ(extracted.source->studyInstanceUid, source.study);
+
+  // A NIfTI input refers to the series named with --dicom-series.
+  ASSERT_EQ(runVesalius({"segment", "--scan", folder, "--out", nifti}).exitCode, 0);
+  r = runVesalius({"labels", "extract", "--labels", nifti, "--label", "bone", "--out", fromNifti, "--dicom-series",
+                   folder});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::DicomSegmentation fromNiftiSeg = io::readDicomSeg(fromNifti);
+  ASSERT_TRUE(fromNiftiSeg.source);
+  EXPECT_EQ(fromNiftiSeg.source->seriesInstanceUid, source.series);
+  EXPECT_EQ(fromNiftiSeg.labelMap.labels.values, extracted.labelMap.labels.values);
+  r = runVesalius({"labels", "extract", "--labels", nifti, "--label", "bone", "--out", fresh("bone.nii.gz"),
+                   "--dicom-series", folder});
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+
+  r = runVesalius({"info", bone});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::cout << r.out;
+  expectContains(r.out, "DICOM segmentation, 1 segments");
+  expectContains(r.out, "refers to    series " + source.series + " (3 images)");
+  expectContains(r.out, "bone");
+}
+
+TEST(CliDicomSeg, ACutSegIsOneLineAndExitThree) {
+  const std::string whole = fresh("whole.dcm");
+  ASSERT_EQ(runVesalius({"segment", "--scan", kData + "/dicom/ct-3slice-dcmqi/ct-3slice", "--out", whole}).exitCode, 0);
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = fresh("cut.dcm");
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"info", cut},
+        std::vector<std::string>{"labels", "extract", "--labels", cut, "--label", "bone", "--out", fresh("x.dcm")}}) {
+    const CommandResult r = runVesalius(args);
+    std::cout << r.err;
+    EXPECT_EQ(r.exitCode, 3) << args[0];
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    expectContains(r.err, cut);
+  }
+  EXPECT_FALSE(fs::exists(fresh("x.dcm")));
+}
+
+}  // namespace
+}  // namespace vesalius::test
