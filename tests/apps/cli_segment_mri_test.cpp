@@ -1,5 +1,5 @@
 // `vesalius segment --modality mri` end to end on the head MRI: the label map, its table and picture, the
-// same labels as the library gives, Slicer progress stages, a skull surface by name, help and usage errors.
+// same labels as the library gives, one Slicer progress bar over its stages, a skull surface by name, help and usage errors.
 #include "run_command.h"
 
 #include "vesalius/io/image_io.h"
@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
+#include <sstream>
 #include <string>
 
 namespace vesalius::test {
@@ -23,8 +25,25 @@ TEST(CliSegmentMri, HeadGivesTheLibraryLabelsWithTableAndPicture) {
   const CommandResult r = runVesalius(
       {"segment", "--scan", kHead, "--modality", "mri", "--out", labels, "--force", "--progress", "slicer"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* stage : {"body", "skin", "fat and bone"})
-    expectContains(r.out, std::string("<filter-name>") + stage + "</filter-name>");
+  // One bar over the command: the first stage starts it, the others name themselves in comments, and the
+  // whole command's fraction only grows.
+  expectContains(r.out, "<filter-start><filter-name>body</filter-name>");
+  for (const char* stage : {"skin", "fat and bone"}) expectContains(r.out, std::string("<filter-comment>") + stage);
+  std::istringstream lines(r.out);
+  long starts = 0, ends = 0;
+  double last = -1;
+  for (std::string line; std::getline(lines, line);) {
+    starts += line.rfind("<filter-start>", 0) == 0;
+    ends += line.rfind("<filter-end>", 0) == 0;
+    const std::string tag = "<filter-progress>";
+    if (line.rfind(tag, 0) != 0) continue;
+    const double value = std::stod(line.substr(tag.size()));
+    EXPECT_GT(value, last) << line;
+    last = value;
+  }
+  std::cout << starts << " start, " << ends << " end, the whole command's fraction last " << last << '\n';
+  EXPECT_EQ(starts, 1);
+  EXPECT_EQ(ends, 1);
   EXPECT_TRUE(fs::exists(outputDir() + "/head.tsv"));
   EXPECT_GT(fs::file_size(outputDir() + "/head.png"), 10000u);
 

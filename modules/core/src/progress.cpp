@@ -39,6 +39,8 @@ void drawBar(const std::string& name, int permille) {
   std::fflush(stderr);
 }
 
+int permilleOf(double fraction) { return int(std::lround(std::clamp(fraction, 0.0, 1.0) * 1000.0)); }
+
 }  // namespace
 
 Progress::Style Progress::parseStyle(const std::string& text) {
@@ -51,49 +53,91 @@ Progress::Style Progress::parseStyle(const std::string& text) {
 
 Progress::Progress(Style style) : style_(style), start_(std::chrono::steady_clock::now()) {}
 
+Progress::~Progress() {
+  std::lock_guard<std::mutex> lock(printMutex_);
+  if (style_ == Style::Slicer && started_) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::printf("<filter-end><filter-name>%s</filter-name><filter-time>%.3f</filter-time></filter-end>\n",
+                escapeXml(firstName_).c_str(), seconds);
+    std::fflush(stdout);
+  } else if (drawn_) {
+    std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+}
+
+void Progress::plan(const std::vector<std::pair<std::string, double>>& stages) {
+  double total = 0;
+  for (const auto& [name, cost] : stages) {
+    if (!(cost > 0) || !std::isfinite(cost)) throw UsageError("progress plan: stage '" + name + "' has no cost");
+    total += cost;
+  }
+  std::lock_guard<std::mutex> lock(printMutex_);
+  planned_.clear();
+  double lo = 0;
+  for (const auto& [name, cost] : stages) {
+    planned_[name] = {lo, std::min(1.0, lo + cost / total)};
+    lo += cost / total;
+  }
+}
+
 void Progress::begin(const std::string& name, const std::string& comment) {
   std::lock_guard<std::mutex> lock(printMutex_);
   name_ = name;
-  start_ = std::chrono::steady_clock::now();
-  lastPermille_.store(-1);
+  const double now = std::max(0, shownPermille_.load()) / 1000.0;
+  if (const auto found = planned_.find(name); found != planned_.end()) {
+    within_ = found->second;
+    stage_ = within_;
+  } else {
+    const double lo = std::clamp(now, within_.lo, within_.hi);
+    stage_ = {lo, lo + (within_.hi - lo) / 2};
+  }
+  stagePermille_.store(-1);
   if (style_ != Style::Slicer) return;
-  std::printf("<filter-start><filter-name>%s</filter-name><filter-comment>%s</filter-comment>"
-              "</filter-start>\n",
-              escapeXml(name).c_str(), escapeXml(comment).c_str());
+  if (!started_) {
+    started_ = true;
+    firstName_ = name;
+    std::printf("<filter-start><filter-name>%s</filter-name><filter-comment>%s</filter-comment></filter-start>\n",
+                escapeXml(name).c_str(), escapeXml(comment).c_str());
+  } else {
+    std::printf("<filter-comment>%s%s%s</filter-comment>\n", escapeXml(name).c_str(), comment.empty() ? "" : ": ",
+                escapeXml(comment).c_str());
+  }
   std::fflush(stdout);
 }
 
 void Progress::update(double fraction) {
   if (style_ == Style::None || !(fraction >= 0.0)) return;
-  const int permille = int(std::lround(std::min(fraction, 1.0) * 1000.0));
+  const int stage = permilleOf(fraction);
   // Only increases are shown: updates from several threads may arrive out of order.
-  if (permille <= lastPermille_.load(std::memory_order_relaxed)) return;
+  if (stage <= stagePermille_.load(std::memory_order_relaxed)) return;
   std::lock_guard<std::mutex> lock(printMutex_);
-  if (permille <= lastPermille_.load(std::memory_order_relaxed)) return;
-  lastPermille_.store(permille, std::memory_order_relaxed);
-  if (style_ == Style::Slicer) {
-    std::printf("<filter-progress>%g</filter-progress>\n", permille / 1000.0);
-    std::fflush(stdout);
-  } else if (stderrIsTerminal()) {
-    drawBar(name_, permille);
-  }
+  if (stage <= stagePermille_.load(std::memory_order_relaxed)) return;
+  stagePermille_.store(stage, std::memory_order_relaxed);
+  show(permilleOf(stage_.lo + (stage_.hi - stage_.lo) * stage / 1000.0), stage);
 }
 
 void Progress::end() {
   std::lock_guard<std::mutex> lock(printMutex_);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (style_ != Style::None && stagePermille_.load() < 1000) show(permilleOf(stage_.hi), 1000);
+  stagePermille_.store(1000);
+  shownPermille_.store(std::max(shownPermille_.load(), permilleOf(stage_.hi)));
+  // After a planned stage, a stage outside the plan shares what is left of the whole.
+  if (planned_.count(name_)) within_ = Range{};
+}
+
+// Called with printMutex_ held.
+void Progress::show(int overallPermille, int stagePermille) {
+  const bool moved = overallPermille > shownPermille_.load();
+  if (moved) shownPermille_.store(overallPermille);
   if (style_ == Style::Slicer) {
-    std::printf("<filter-end><filter-name>%s</filter-name><filter-time>%.3f</filter-time>"
-                "</filter-end>\n",
-                escapeXml(name_).c_str(), seconds);
+    if (moved) std::printf("<filter-progress>%g</filter-progress>\n", overallPermille / 1000.0);
+    std::printf("<filter-stage-progress>%g</filter-stage-progress>\n", stagePermille / 1000.0);
     std::fflush(stdout);
   } else if (style_ == Style::Bar && stderrIsTerminal()) {
-    drawBar(name_, 1000);
-    std::fputc('\n', stderr);
-    std::fflush(stderr);
+    drawBar(name_, std::max(0, shownPermille_.load()));
+    drawn_ = true;
   }
-  lastPermille_.store(-1);
 }
 
 }  // namespace vesalius
