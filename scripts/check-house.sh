@@ -89,6 +89,11 @@ done
 # 3. No work diary: the repository speaks of the software, its users and its methods, not of how it was
 # made. CHANGELOG.md is where changes are told.
 diary='\bsessions? [0-9]|work periods?\b|\bperiod [0-9]+\b|\bhelper-[0-9]|\bwas [0-9][0-9,.]*[^.;]{0,30}, now\b|\b(I|we) (tried|ran|changed|fixed)\b|\b(this|last|previous) session\b[^'"'"']'
+# ... nor of whose other work shared the machine, of the change that made a figure, or of its tuning.
+diary+='|\b(before|after) this (change|commit)\b|\bsince (commit )?[0-9a-f]{7,40}\b|\ba first run gave\b'
+diary+='|\b(while|with) (two )?other (jobs|builds) (ran|were running|on the)|\bunder load from other\b'
+diary+='|\bbeside other (runs|jobs|builds)\b|\bloaded by other\b|\bshared with (two|other) (builds|jobs)\b'
+diary+='|\bas the [a-z]+ was tuned\b'
 while IFS= read -r hit; do
   breach "${hit%%:*}: reads as a work diary: ${hit#*:}"
 done < <(find README.md docs modules apps segmentation tests scripts templates workflows -type f \
