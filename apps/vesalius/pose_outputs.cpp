@@ -7,6 +7,7 @@
 #include "vesalius/io/motion_io.h"
 #include "vesalius/posing/posed_volume.h"
 #include "vesalius/posing/untangle_tets.h"
+#include "vesalius/rigging/rigid_bone_parts.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <algorithm>
@@ -36,11 +37,23 @@ void writePose(const AnatomyRig& rig, const std::vector<TriMesh>& meshes, const 
     out[m].V = carried[m];
     io::writeTriMesh(dir + "/" + fs::path(rig.meshes[m]).filename().string(), out[m], write);
   }
-  if (volumes.scan)
-    io::writeScan(dir + "/" + volumes.scanName, posing::poseImage(rig.tets.V, rig.tets.T, posedTets, *volumes.scan));
-  if (volumes.labels)
+  // The volumes keep their grids; their voxels inside a bone mesh move with it rigidly.
+  const auto onGrid = [&](const GridGeometry& grid) {
+    return rigging::rigidBoneParts(rig, meshes, carried, world, grid, grid);
+  };
+  if (volumes.scan) {
+    const posing::RigidParts bones = onGrid(volumes.scan->geometry);
+    posing::PosedVolumeOptions options;
+    options.rigid = &bones;
+    io::writeScan(dir + "/" + volumes.scanName, posing::poseImage(rig.tets.V, rig.tets.T, posedTets, *volumes.scan, options));
+  }
+  if (volumes.labels) {
+    const posing::RigidParts bones = onGrid(volumes.labels->labels.geometry);
+    posing::PosedVolumeOptions options;
+    options.rigid = &bones;
     io::writeLabelMap(dir + "/" + volumes.labelsName,
-                      posing::poseLabels(rig.tets.V, rig.tets.T, posedTets, *volumes.labels));
+                      posing::poseLabels(rig.tets.V, rig.tets.T, posedTets, *volumes.labels, options));
+  }
   if (!png.empty()) {
     // The skin translucent over the other meshes, as the viewer of the issue shows them.
     std::vector<viz::SurfaceLayer> layers;

@@ -12,6 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <iostream>
 #include <string>
 
 using namespace vesalius;
@@ -184,6 +187,73 @@ TEST(PosedVolume, VoxelsOutsideThePosedMeshTakeTheBackground) {
       }
   EXPECT_GT(labelOutside, 0);
   EXPECT_EQ(labelWrong, 0);
+}
+
+// A rigid part (a bone) moves by its own map, whatever the tets around it do: the bar moves by A, the
+// ball's part by B, which slides it 2 mm along the bar. Every voxel of the posed ball is the ball's label,
+// also where the tets alone would have put the bar's tissue there.
+TEST(PosedVolume, RigidPartsMoveByTheirOwnMapAndWinOverTheTets) {
+  const test::BoneBar bar = test::fourBoneBar();
+  const LabelMap labels = barLabels();
+  Eigen::Isometry3d a = Eigen::Isometry3d::Identity();
+  a.translate(Eigen::Vector3d(5, -3, 2)).rotate(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0.3).normalized()));
+  const Eigen::Isometry3d b = a * Eigen::Translation3d(2, 0, 0);
+  const MatrixX3d posedV = moved(bar.mesh.V, a);
+  const Eigen::Vector3d lo = posedV.colwise().minCoeff().transpose().array() - 2;
+  const Eigen::Vector3d extent = posedV.colwise().maxCoeff().transpose() - lo;
+  posing::PosedVolumeOptions options;
+  options.outputGeometry = grid(lo, Eigen::Vector3d::Constant(0.5), (extent / 0.5).cast<int>().array() + 5);
+  const GridGeometry& out = *options.outputGeometry;
+  const Eigen::Vector3d centre(20, 4, 4);
+  posing::RigidParts rigid;
+  rigid.parts = Grid<Label>(out, 0);
+  rigid.restFromPosed = {b.inverse()};
+  for (int k = 0; k < out.size.z(); ++k)
+    for (int j = 0; j < out.size.y(); ++j)
+      for (int i = 0; i < out.size.x(); ++i)
+        if ((b.inverse() * out.indexToWorld(Eigen::Vector3d(i, j, k)) - centre).norm() <= 3) rigid.parts.at(i, j, k) = 1;
+  options.rigid = &rigid;
+  const LabelMap posed = posing::poseLabels(bar.mesh.V, bar.mesh.T, posedV, labels, options);
+  // Half a voxel's diagonal (0.43 mm) inside the ball, nearest-voxel sampling gives the ball's label.
+  long inPart = 0, wrongInPart = 0, partOnly = 0, inTetsBall = 0, wrongInTetsBall = 0;
+  for (int k = 0; k < out.size.z(); ++k)
+    for (int j = 0; j < out.size.y(); ++j)
+      for (int i = 0; i < out.size.x(); ++i) {
+        const Eigen::Vector3d y = out.indexToWorld(Eigen::Vector3d(i, j, k));
+        const double fromPart = (b.inverse() * y - centre).norm(), fromTets = (a.inverse() * y - centre).norm();
+        const bool ball = posed.labels.at(i, j, k) == 3;
+        if (fromPart <= 2.5) ++inPart, wrongInPart += !ball, partOnly += fromTets > 3.5;
+        if (fromTets <= 2.5 && fromPart > 3.5) ++inTetsBall, wrongInTetsBall += !ball;
+      }
+  std::cout << inPart << " voxels deep in the moved part (" << partOnly << " where the tets hold the bar's tissue): "
+            << wrongInPart << " not the ball; " << inTetsBall << " deep in the ball the tets carry, outside the part: "
+            << wrongInTetsBall << " not the ball\n";
+  EXPECT_GT(partOnly, 0);
+  EXPECT_EQ(wrongInPart, 0);
+  EXPECT_GT(inTetsBall, 0);
+  EXPECT_EQ(wrongInTetsBall, 0);
+  // The same on a scan: a voxel of the part takes the ramp's value at its rest point.
+  const Image scan = rampImage();
+  const Image posedScan = posing::poseImage(bar.mesh.V, bar.mesh.T, posedV, scan, options);
+  double worst = 0;
+  for (int k = 0; k < out.size.z(); ++k)
+    for (int j = 0; j < out.size.y(); ++j)
+      for (int i = 0; i < out.size.x(); ++i)
+        if (rigid.parts.at(i, j, k)) {
+          const Eigen::Vector3d x = b.inverse() * out.indexToWorld(Eigen::Vector3d(i, j, k));
+          worst = std::max(worst, std::abs(posedScan.at(i, j, k) - (0.5 * x.x() - 0.25 * x.y() + 0.125 * x.z())));
+        }
+  std::cout << "ramp in the part: largest error " << worst << '\n';
+  EXPECT_LT(worst, 1e-4);  // trilinear sampling of a linear ramp is exact; float rounding only
+  // Parts on another grid, or a part without its map, are refused.
+  posing::RigidParts offGrid = rigid;
+  offGrid.parts = Grid<Label>(labels.labels.geometry, 0);
+  options.rigid = &offGrid;
+  EXPECT_THROW(posing::poseLabels(bar.mesh.V, bar.mesh.T, posedV, labels, options), BadInput);
+  posing::RigidParts unmapped = rigid;
+  unmapped.parts.values[0] = 2;
+  options.rigid = &unmapped;
+  EXPECT_THROW(posing::poseImage(bar.mesh.V, bar.mesh.T, posedV, scan, options), BadInput);
 }
 
 TEST(PosedVolume, OverlappingPosedTetsGiveTheSameResultOnAnyThreadCount) {

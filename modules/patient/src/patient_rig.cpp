@@ -4,6 +4,7 @@
 #include "vesalius/posing/posed_volume.h"
 #include "vesalius/posing/rig_poser.h"
 #include "vesalius/rigging/body_rig.h"
+#include "vesalius/rigging/rigid_bone_parts.h"
 
 #include <algorithm>
 #include <map>
@@ -119,6 +120,9 @@ PosedPatient posePatient(const PatientRig& rig, const std::vector<Eigen::Isometr
   posed.tissueVerticesInsideAtRest = meter.insideAtRest();
   posing::PosedVolumeOptions grid;
   grid.outputGeometry = gridHolding(ct.geometry, rig.rig.tets, posed.tets);
+  const posing::RigidParts bones =
+      rigging::rigidBoneParts(rig.rig, poser.meshes(), posed.meshes, world, ct.geometry, *grid.outputGeometry);
+  grid.rigid = &bones;
   posed.scan = posing::poseImage(rig.rig.tets.V, rig.rig.tets.T, posed.tets, ct, grid);
   if (organs) posed.organs = posing::poseLabels(rig.rig.tets.V, rig.rig.tets.T, posed.tets, *organs, grid);
   return posed;

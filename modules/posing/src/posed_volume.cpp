@@ -26,7 +26,7 @@ constexpr int kSlab = 4;  // z-planes per task: enough work per task, few tets v
 constexpr double kInside = 1e-10;
 
 void checkInputs(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV, const GridGeometry& in,
-                 std::size_t valueCount, const GridGeometry& out) {
+                 std::size_t valueCount, const GridGeometry& out, const RigidParts* rigid) {
   if (posedV.rows() != restV.rows())
     throw BadInput("", "posed volume: " + std::to_string(posedV.rows()) + " posed vertices for " +
                            std::to_string(restV.rows()) + " rest vertices");
@@ -37,6 +37,13 @@ void checkInputs(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& po
   if (std::int64_t(valueCount) != in.voxelCount())
     throw BadInput("", "posed volume: " + std::to_string(valueCount) + " values for " +
                            std::to_string(in.voxelCount()) + " voxels");
+  if (!rigid) return;
+  if (rigid->parts.geometry.size != out.size || std::int64_t(rigid->parts.values.size()) != out.voxelCount())
+    throw BadInput("", "posed volume: the rigid parts are not on the output grid");
+  const auto highest = std::max_element(rigid->parts.values.begin(), rigid->parts.values.end());
+  if (highest != rigid->parts.values.end() && std::size_t(*highest) > rigid->restFromPosed.size())
+    throw BadInput("", "posed volume: rigid part " + std::to_string(*highest) + " of " +
+                           std::to_string(rigid->restFromPosed.size()) + " has no map");
 }
 
 // World point → continuous voxel index, as one affine map.
@@ -107,9 +114,26 @@ void fillTet(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV
 
 // The rasterizer shared by scans and labels. sample(index) gives the input's value at a continuous index
 // of the input grid (or the background outside it).
+// Writes the voxels of the rigid parts with z index in [kFrom, kTo].
+template <class Value, class Sample>
+void fillRigid(const RigidParts& rigid, const Eigen::Affine3d& inIndex, int kFrom, int kTo, Grid<Value>& posed,
+               std::vector<char>& covered, const Sample& sample) {
+  const GridGeometry& out = posed.geometry;
+  const Eigen::Affine3d outWorld(out.indexToWorldMatrix());
+  for (int k = kFrom; k <= kTo; ++k)
+    for (int j = 0; j < out.size.y(); ++j)
+      for (int i = 0; i < out.size.x(); ++i) {
+        const std::int64_t v = out.linearIndex(i, j, k);
+        const Label p = rigid.parts.values[std::size_t(v)];
+        if (p == 0) continue;
+        covered[std::size_t(v)] = 1;
+        posed.values[std::size_t(v)] = sample(Eigen::Vector3d(inIndex * (rigid.restFromPosed[p - 1] * (outWorld * Eigen::Vector3d(i, j, k)))));
+      }
+}
+
 template <class Value, class Sample>
 Grid<Value> rasterize(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV, const GridGeometry& in,
-                      const GridGeometry& out, Value background, const Sample& sample) {
+                      const GridGeometry& out, const RigidParts* rigid, Value background, const Sample& sample) {
   const Eigen::Affine3d outIndex = worldToIndexMap(out), inIndex = worldToIndexMap(in);
   const std::vector<std::vector<int>> slabs = tetsBySlab(posedV, T, out, outIndex);
   Grid<Value> posed(out, background);
@@ -117,25 +141,25 @@ Grid<Value> rasterize(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3
   // Each task owns the voxels of one slab, so no two tasks write the same voxel or flag.
   tbb::parallel_for(std::size_t(0), slabs.size(), [&](std::size_t s) {
     const int kFrom = int(s) * kSlab, kTo = std::min(kFrom + kSlab, out.size.z()) - 1;
+    if (rigid) fillRigid(*rigid, inIndex, kFrom, kTo, posed, covered, sample);
     for (const int t : slabs[s]) fillTet(restV, T, posedV, t, outIndex, inIndex, kFrom, kTo, posed, covered, sample);
   });
   return posed;
 }
-
 
 }  // namespace
 
 Image poseImage(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& posedV, const Image& scan,
                 const PosedVolumeOptions& options) {
   const GridGeometry& out = options.outputGeometry ? *options.outputGeometry : scan.geometry;
-  checkInputs(restV, T, posedV, scan.geometry, scan.values.size(), out);
+  checkInputs(restV, T, posedV, scan.geometry, scan.values.size(), out, options.rigid);
   const double background =
       options.background ? *options.background : double(*std::min_element(scan.values.begin(), scan.values.end()));
   if (!std::isfinite(background)) throw BadInput("", "posed volume: the background is not finite");
   const float fill = float(background);
   Image posed;
   static_cast<Grid<float>&>(posed) =
-      rasterize(restV, T, posedV, scan.geometry, out, fill, [&](const Eigen::Vector3d& c) {
+      rasterize(restV, T, posedV, scan.geometry, out, options.rigid, fill, [&](const Eigen::Vector3d& c) {
         return insideVoxels(c, scan.geometry.size) ? float(sampleTrilinear(scan, c)) : fill;
       });
   posed.fileType = scan.fileType;
@@ -146,14 +170,14 @@ LabelMap poseLabels(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d&
                     const PosedVolumeOptions& options) {
   const Grid<Label>& in = labels.labels;
   const GridGeometry& out = options.outputGeometry ? *options.outputGeometry : in.geometry;
-  checkInputs(restV, T, posedV, in.geometry, in.values.size(), out);
+  checkInputs(restV, T, posedV, in.geometry, in.values.size(), out, options.rigid);
   const double background = options.background.value_or(0.0);
   if (!(background >= 0 && background <= std::numeric_limits<Label>::max() && background == std::floor(background)))
     throw BadInput("", "posed volume: background " + std::to_string(background) + " is not a label");
   const Label fill = Label(background);
   LabelMap posed;
   posed.table = labels.table;
-  posed.labels = rasterize(restV, T, posedV, in.geometry, out, fill, [&](const Eigen::Vector3d& c) {
+  posed.labels = rasterize(restV, T, posedV, in.geometry, out, options.rigid, fill, [&](const Eigen::Vector3d& c) {
     if (!insideVoxels(c, in.geometry.size)) return fill;
     // The far half voxel rounds up to `size`, which belongs to the last voxel.
     const Eigen::Vector3i n = (c.array() + 0.5).floor().cast<int>().min(in.geometry.size.array() - 1);
