@@ -6,6 +6,7 @@
 //   edit     the fat editor (§6): per-bone fat amounts over bounded biharmonic weights of a reference's
 //            bones, as a texture on the reference skin's uv and a picture of the body.
 #include "bone_fat_amounts.h"
+#include "command_runner.h"
 #include "common.h"
 #include "fat_outputs.h"
 #include "thickness_input.h"
@@ -31,18 +32,15 @@ struct ForestOptions {
   CommonOptions common;
 };
 
-void runForest(const ForestOptions& o) {
+void runForest(const ForestOptions& o, CommandRun& run) {
   if (o.surface.empty() != o.outMesh.empty()) throw UsageError("fat forest: --surface and --out-mesh go together");
   checkOutputs({o.out, o.outMesh, o.png, o.common.report},
                {o.source.labels, o.source.fatMask, o.surface, o.source.table}, o.common.force);
-  io::Report report("fat forest");
-  if (!o.surface.empty()) report.input("surface", o.surface);
-  Progress progress(o.common.progressStyle());
-  const LoadedForest l = loadForest(o.source, report, progress);
-  writeForestOutputs(l, o.out, o.png, o.common.writeOptions(), report);
+  if (!o.surface.empty()) run.report.input("surface", o.surface);
+  const LoadedForest l = loadForest(o.source, run.report, run.progress);
+  writeForestOutputs(l, o.out, o.png, o.common.writeOptions(), run.report);
   if (!o.surface.empty())
-    writeThicknessOnSurface(o.surface, o.outMesh, *l.forest, o.source.vertexRadius, o.common.writeOptions(), report);
-  o.common.finish(report);
+    writeThicknessOnSurface(o.surface, o.outMesh, *l.forest, o.source.vertexRadius, o.common.writeOptions(), run.report);
 }
 
 void addForestCommand(CLI::App& fatCommand) {
@@ -62,7 +60,7 @@ void addForestCommand(CLI::App& fatCommand) {
       "Example:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct --out ct.nii.gz\n"
       "  vesalius surface --labels ct.nii.gz --label skin --out skin.vtp\n"
       "  vesalius fat forest --labels ct.nii.gz --out thickness.nii.gz --surface skin.vtp --out-mesh skin_fat.vtp");
-  cmd->callback([o] { runForest(*o); });
+  cmd->callback([o] { runCommand("fat forest", o->common, [&](CommandRun& run) { runForest(*o, run); }); });
 }
 
 struct ErodeOptions {
@@ -72,34 +70,35 @@ struct ErodeOptions {
   CommonOptions common;
 };
 
-void runErode(const ErodeOptions& o) {
+// The bar's shares of the forest and the erosion, as a run on the test CT's skin and tissue classes
+// (testdata/ct-abdomen-pelvis) times them: 0.1 s and 7.3 s.
+const StagePlan kErodeStages{{"fat forest", 0.1}, {"erode", 7.3}};
+
+void runErode(const ErodeOptions& o, CommandRun& run) {
   if (o.thickness.empty() && o.source.labels.empty()) throw UsageError("fat erode: give --thickness, --labels or both");
   checkOutputs({o.out, o.common.report}, {o.skin, o.thickness, o.source.labels, o.source.fatMask, o.source.table},
                o.common.force);
-  io::Report report("fat erode");
-  report.input("skin", o.skin);
-  Progress progress(o.common.progressStyle());
+  run.report.input("skin", o.skin);
   TriMesh mesh = io::readTriMesh(o.skin);
   LoadedForest l;
-  if (!o.source.labels.empty()) l = loadForest(o.source, report, progress);
-  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, report);
+  if (!o.source.labels.empty()) l = loadForest(o.source, run.report, run.progress);
+  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, run.report);
 
   fat::ErodeSkinOptions options;
   options.pathRadiusMm = o.pathRadius;
   options.maxFractionOfInnerRadius = o.maxFraction;
   options.source = o.thickness.empty() ? o.source.labels : o.thickness;
-  report.parameter("path_radius_mm", o.pathRadius);
-  report.parameter("max_fraction_of_inner_radius",
-                   std::isfinite(o.maxFraction) ? nlohmann::json(o.maxFraction) : nullptr);
+  run.report.parameter("path_radius_mm", o.pathRadius);
+  run.report.parameter("max_fraction_of_inner_radius",
+                       std::isfinite(o.maxFraction) ? nlohmann::json(o.maxFraction) : nullptr);
   fat::ErodedSkin e;
   {
-    auto timer = report.time("erode");
-    progress.begin("erode", "moving the skin inward by the fat thickness");
+    auto timer = run.report.time("erode");
+    run.progress.begin("erode", "moving the skin inward by the fat thickness");
     e = fat::erodeSkin(mesh.V, mesh.F, t, l.forest.get(), options);
-    progress.end();
+    run.progress.end();
   }
-  writeErodedSkin(o.out, std::move(mesh), t, e, o.common.writeOptions(), report);
-  o.common.finish(report);
+  writeErodedSkin(o.out, std::move(mesh), t, e, o.common.writeOptions(), run.report);
 }
 
 void addErodeCommand(CLI::App& fatCommand) {
@@ -126,7 +125,8 @@ void addErodeCommand(CLI::App& fatCommand) {
   cmd->footer(
       "Example:\n  vesalius fat erode --skin body.vtp --labels ct.nii.gz --out eroded.vtp --report erode.json\n"
       "  vesalius fat erode --skin body.obj --thickness 5 --out eroded.obj");
-  cmd->callback([o] { runErode(*o); });
+  cmd->callback(
+      [o] { runCommand("fat erode", o->common, [&](CommandRun& run) { runErode(*o, run); }, kErodeStages); });
 }
 
 struct TextureOptions {
@@ -136,31 +136,32 @@ struct TextureOptions {
   CommonOptions common;
 };
 
-void runTexture(const TextureOptions& o) {
+// The bar's shares of the forest and the texture, as a run on the test CT's body with a uv (1024 texels,
+// tests/fat/cli_fat_test.cpp) times them: 0.007 s and 0.32 s.
+const StagePlan kTextureStages{{"fat forest", 0.007}, {"texture", 0.32}};
+
+void runTexture(const TextureOptions& o, CommandRun& run) {
   if (o.thickness.empty() && o.source.labels.empty()) throw UsageError("fat texture: give --thickness or --labels");
   checkOutputs({o.out, o.png, o.common.report},
                {o.skin, o.thickness, o.source.labels, o.source.fatMask, o.source.table}, o.common.force);
-  io::Report report("fat texture");
-  report.input("skin", o.skin);
-  Progress progress(o.common.progressStyle());
+  run.report.input("skin", o.skin);
   const TriMesh mesh = io::readTriMesh(o.skin);
   if (mesh.UV.rows() == 0) throw BadInput(o.skin, "the mesh has no texture coordinates (uv)");
   LoadedForest l;
-  if (o.thickness.empty()) l = loadForest(o.source, report, progress);
-  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, report);
+  if (o.thickness.empty()) l = loadForest(o.source, run.report, run.progress);
+  const Eigen::VectorXd t = vertexThickness(o.thickness, mesh, o.skin, l, o.source, run.report);
 
   fat::ThicknessTextureOptions options;
   options.width = options.height = o.size;
-  report.parameter("size", o.size);
+  run.report.parameter("size", o.size);
   fat::ThicknessTexture tex;
   {
-    auto timer = report.time("texture");
-    progress.begin("texture", "rasterizing the thickness over the uv charts");
+    auto timer = run.report.time("texture");
+    run.progress.begin("texture", "rasterizing the thickness over the uv charts");
     tex = fat::rasterizeThickness(mesh, t, options, o.skin);
-    progress.end();
+    run.progress.end();
   }
-  writeTextureOutputs(o.out, o.png, mesh, o.skin, t, tex, o.common.writeOptions(), report);
-  o.common.finish(report);
+  writeTextureOutputs(o.out, o.png, mesh, o.skin, t, tex, o.common.writeOptions(), run.report);
 }
 
 void addTextureCommand(CLI::App& fatCommand) {
@@ -184,7 +185,8 @@ void addTextureCommand(CLI::App& fatCommand) {
       "Example:\n"
       "  vesalius fat texture --skin skin_uv.obj --labels ct.nii.gz --size 1024 --out fat.nrrd --png fat.png\n"
       "  vesalius fat erode --skin other_skin_uv.obj --thickness fat.nrrd --out eroded.vtp");
-  cmd->callback([o] { runTexture(*o); });
+  cmd->callback(
+      [o] { runCommand("fat texture", o->common, [&](CommandRun& run) { runTexture(*o, run); }, kTextureStages); });
 }
 
 struct EditOptions {
@@ -194,29 +196,26 @@ struct EditOptions {
   CommonOptions common;
 };
 
-void runEdit(const EditOptions& o) {
+void runEdit(const EditOptions& o, CommandRun& run) {
   const EditOutputs& out = o.outputs;
   if (out.out.empty() && out.outMesh.empty()) throw UsageError("fat edit: give --out, --out-mesh or both");
   if (!out.png.empty() && out.out.empty()) throw UsageError("fat edit: --png is a picture of the texture of --out");
   if (!out.bodyPng.empty() && !viz::canRenderSurfaces())
     throw UsageError("fat edit: --body-png needs a display (run under xvfb-run)");
   checkOutputs({out.out, out.outMesh, out.png, out.bodyPng, o.common.report}, {o.amounts}, o.common.force);
-  io::Report report("fat edit");
-  report.input("reference", o.reference);
-  report.input("amounts", o.amounts);
-  Progress progress(o.common.progressStyle());
+  run.report.input("reference", o.reference);
+  run.report.input("amounts", o.amounts);
   TriMesh skin;
   Eigen::VectorXd t;
   {
     const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
-    progress.begin("bone weights", "bounded biharmonic weights of the bones on a voxel grid");
-    t = boneFatAtSkin(reference, o.reference, o.amounts, o.fat, report);
-    progress.end();
+    run.progress.begin("bone weights", "bounded biharmonic weights of the bones on a voxel grid");
+    t = boneFatAtSkin(reference, o.reference, o.amounts, o.fat, run.report);
+    run.progress.end();
     skin = reference.skin;
   }
   const std::string skinPath = (std::filesystem::path(o.reference) / "skin.obj").string();
-  writeEditOutputs(out, std::move(skin), skinPath, t, o.common.writeOptions(), report);
-  o.common.finish(report);
+  writeEditOutputs(out, std::move(skin), skinPath, t, o.common.writeOptions(), run.report);
 }
 
 void addEditCommand(CLI::App& fatCommand) {
@@ -245,7 +244,7 @@ void addEditCommand(CLI::App& fatCommand) {
       "  vesalius fat edit --reference ref --amounts amounts.json --out fat.nrrd --png fat.png --body-png body.png\n"
       "  vesalius transfer --reference ref --target-skin body.obj --fat fat.nrrd --out target\n"
       "Bones are the reference's bone groups (a bone without a group by its name); see docs/methods/fat-thickness.md.");
-  cmd->callback([o] { runEdit(*o); });
+  cmd->callback([o] { runCommand("fat edit", o->common, [&](CommandRun& run) { runEdit(*o, run); }); });
 }
 
 }  // namespace

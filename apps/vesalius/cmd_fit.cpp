@@ -3,6 +3,7 @@
 // surfaces, the report (per-marker errors and their histogram, Fig. 16; the objective per iteration, Fig. 9;
 // the minimum dihedral angles before and after, Fig. 17) and a picture: the fitted surface's contour over
 // the scan's slices (Fig. 18) beside the error histogram.
+#include "command_runner.h"
 #include "common.h"
 #include "fit_report.h"
 
@@ -109,36 +110,33 @@ void printNotes(const FitCommandOptions& o, const fit::TemplateFit& f) {
                  "organ (vesalius surface --label BONE --shared --touching ORGAN)\n";
 }
 
-void runFit(FitCommandOptions o) {
+void runFit(FitCommandOptions o, CommandRun& run) {
   const auto started = std::chrono::steady_clock::now();
   checkOptions(o);
   o.fit.method = o.method == "elastic" ? fit::FitMethod::Elastic : fit::FitMethod::Plastic;
   o.fit.placeBySimilarity = o.init == "similarity";
-  io::Report report("fit");
-  reportInputs(o, report);
-  Progress progress(o.common.progressStyle());
-  const fit::TemplateFit f = fit::fitTemplate(readInputs(o, report), o.fit, &progress);
-  for (const auto& [stage, seconds] : f.stageSeconds) report.stage(stage, seconds);
+  reportInputs(o, run.report);
+  const fit::TemplateFit f = fit::fitTemplate(readInputs(o, run.report), o.fit, &run.progress);
+  for (const auto& [stage, seconds] : f.stageSeconds) run.report.stage(stage, seconds);
   printNotes(o, f);
   {
-    auto timer = report.time("write meshes");
+    auto timer = run.report.time("write meshes");
     const io::MeshWriteOptions write{o.common.writeOptions()};
     io::writeTetMesh(o.out, f.fitted, write);
-    report.output("fitted", o.out);
+    run.report.output("fitted", o.out);
     if (!o.surfaceOut.empty()) io::writeTriMesh(o.surfaceOut, f.surface, write);
-    if (!o.surfaceOut.empty()) report.output("surface", o.surfaceOut);
+    if (!o.surfaceOut.empty()) run.report.output("surface", o.surfaceOut);
     if (f.embedded) io::writeTriMesh(o.embedOut, *f.embedded, write);
-    if (f.embedded) report.output("embedded", o.embedOut);
+    if (f.embedded) run.report.output("embedded", o.embedOut);
   }
   if (!o.png.empty()) {
-    auto timer = report.time("picture");
+    auto timer = run.report.time("picture");
     viz::writePng(o.png, fitPicture(io::readScan(o.overlay), f, o.window, o.level), o.common.writeOptions());
-    report.output("png", o.png);
+    run.report.output("png", o.png);
   }
-  reportFit(f, report);
+  reportFit(f, run.report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   printFitSummary(o.out, o.method, f, seconds);
-  o.common.finish(report);
 }
 
 }  // namespace
@@ -225,7 +223,7 @@ void addFitCommand(CLI::App& app) {
       "sl.mrk.json --attach-to insertion.vtp --attach-radius 5 --out muscle.vtu --surface-out muscle.vtp\n"
       "Landmarks pair by label; a label without a partner is refused (exit 3), a pair with an undefined point "
       "skipped.");
-  cmd->callback([o] { runFit(*o); });
+  cmd->callback([o] { runCommand("fit", o->common, [&](CommandRun& run) { runFit(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

@@ -5,6 +5,7 @@
 // goes back into the map taking voxels from the background only, unless --overwrite); the command
 // resolves the labels the user names and sums up what changed (labels_outputs.h). Keeping N > 1 largest
 // components is not offered: label_ops.h gives the largest one, or all components above a size.
+#include "command_runner.h"
 #include "common.h"
 #include "labels_outputs.h"
 
@@ -196,19 +197,18 @@ Edit crop(const Input& in, io::Report& report) {
   return e;
 }
 
-void runLabels(const LabelsOptions& o, const std::string& action, const Action& act) {
-  io::Report report("labels " + action);
-  report.input("labels", o.labels);
-  if (!o.table.empty()) report.input("table", o.table);
+void runLabels(const LabelsOptions& o, const std::string& action, const Action& act, CommandRun& run) {
+  run.report.input("labels", o.labels);
+  if (!o.table.empty()) run.report.input("table", o.table);
   refuseInputsAsOutputs(o.labels, o.table, o.out);
   checkDicomSeriesOption(o.dicomSeries, o.out);
   const Input in(o);
   Edit e;
   {
-    auto timer = report.time(action);
-    e = act(in, report);
+    auto timer = run.report.time(action);
+    e = act(in, run.report);
   }
-  writeLabelsOutputs(in, e.map, e.rows, o.out, o.dicomSeries, o.common, report);
+  writeLabelsOutputs(in, e.map, e.rows, o.out, o.dicomSeries, o.common, run.report);
 }
 
 // One action: --labels, --table, then its own options (`addOwn`), then --out and the common options.
@@ -223,7 +223,9 @@ void addAction(CLI::App& labels, const std::string& name, const std::string& des
   cmd->add_option("--dicom-series", o->dicomSeries, kDicomSeriesHelp);
   addCommonOptions(*cmd, o->common);
   cmd->footer("Example:\n  " + example);
-  cmd->callback([o, name, act] { runLabels(*o, name, act); });
+  cmd->callback([o, name, act] {
+    runCommand("labels " + name, o->common, [&](CommandRun& run) { runLabels(*o, name, act, run); });
+  });
 }
 
 constexpr const char* kLabelHelp = "Label id or name, repeatable";

@@ -2,6 +2,7 @@
 // a radiologist's picks, seed 002 §3.1, §4.1.1); `suggest` proposes ICP markers where a scan has an edge
 // near a roughly placed template (issue 5; docs/methods/marker-suggestions.md); `convert` moves markers
 // between 3D Slicer (.mrk.json, .fcsv), plain CSV and ITK-SNAP (.annot) files.
+#include "command_runner.h"
 #include "common.h"
 #include "markers_outputs.h"
 
@@ -43,12 +44,12 @@ MarkerKind parseKind(const std::string& k) {
   return MarkerKind::Landmark;
 }
 
-void runConvert(const ConvertOptions& o) {
+void runConvert(const ConvertOptions& o, CommandRun& run) {
   std::optional<GridGeometry> geometry;
   if (!o.scan.empty()) geometry = io::describeScan(o.scan).geometry;
   const GridGeometry* g = geometry ? &*geometry : nullptr;
   const MarkerSet set = io::readMarkers(o.in, io::MarkerReadOptions{parseKind(o.kind), g});
-  writeConvertedMarkers(o.in, o.out, set, g, o.common);
+  writeConvertedMarkers(o.in, o.out, set, g, o.common, run.report);
 }
 
 void addConvert(CLI::App& markers) {
@@ -65,34 +66,31 @@ void addConvert(CLI::App& markers) {
               "  vesalius markers convert landmarks.annot --scan ct.nii.gz --out landmarks.mrk.json\n"
               "Statuses (defined, undefined, preview, missing), ids, associated nodes, ITK-SNAP colours and tags\n"
               "are carried where the output format has a place for them; the command says what it has not.");
-  cmd->callback([o] { runConvert(*o); });
+  cmd->callback([o] { runCommand("markers convert", o->common, [&](CommandRun& run) { runConvert(*o, run); }); });
 }
 
-void runSample(const SampleOptions& o) {
+void runSample(const SampleOptions& o, CommandRun& run) {
   // Refuse an existing output before the work, not after it (writeMarkers checks again when it writes).
   if (!o.common.force && std::filesystem::exists(o.out))
     throw UsageError(o.out + ": exists; pass --force to replace it");
   if (!io::isMarkerFile(o.out))
     throw UsageError(o.out + ": unknown marker file type (use .mrk.json, .fcsv, .csv or .annot)");
-  io::Report report("markers sample");
-  report.input("labels", o.labels);
-  report.parameter("label", o.label);
-  report.parameter("count", o.count);
-  report.parameter("seed", o.seed);
+  run.report.input("labels", o.labels);
+  run.report.parameter("label", o.label);
+  run.report.parameter("count", o.count);
+  run.report.parameter("seed", o.seed);
   const LabelMap map = io::readLabelMap(o.labels, o.table);
   const Label id = resolveLabel(map, o.label, o.labels);
   const LabelEntry* entry = map.table.find(id);
   const std::string name = entry ? entry->name : std::to_string(id);
   const std::string named = "label '" + name + "'" + (entry ? " (" + std::to_string(id) + ")" : "");
-
-  Progress progress(o.common.progressStyle());
-  const meshing::LabelBoundaryPoints spread = meshing::labelBoundaryPoints(map, id, {o.count, o.seed}, &progress);
-  for (const auto& [stage, seconds] : spread.stageSeconds) report.stage(stage, seconds);
+  const meshing::LabelBoundaryPoints spread = meshing::labelBoundaryPoints(map, id, {o.count, o.seed}, &run.progress);
+  for (const auto& [stage, seconds] : spread.stageSeconds) run.report.stage(stage, seconds);
   if (!spread.hasVoxels) throw BadInput(o.labels, named + " has no voxels");
   if (spread.points.rows() == 0)
     throw BadInput(o.labels, named + " lies wholly on the edge of the scan: no boundary to mark");
   writeSampledMarkers(o.out, spread.points, {name, named, spread.area, spread.scanEdgeArea}, o.count,
-                      map.labels.geometry, o.common, report);
+                      map.labels.geometry, o.common, run.report);
 }
 
 void addSample(CLI::App& markers) {
@@ -112,7 +110,7 @@ void addSample(CLI::App& markers) {
       "--count 150 --seed 7 --out liver_icp.mrk.json\n"
       "Markers lie on the surface `vesalius surface` makes of the label, except where the label is cut by\n"
       "the edge of the scan; they are chosen by farthest-point sampling from 32 random points per marker.");
-  cmd->callback([o] { runSample(*o); });
+  cmd->callback([o] { runCommand("markers sample", o->common, [&](CommandRun& run) { runSample(*o, run); }); });
 }
 
 struct SuggestOptions {
@@ -180,23 +178,22 @@ segmentation::EdgePolarity parsePolarity(const std::string& p) {
 
 // Places the template, bends it onto the scan's edges, searches once more (patient/marker_suggestions.h),
 // writes the suggestions and the report.
-void runSuggest(const SuggestOptions& o) {
+void runSuggest(const SuggestOptions& o, CommandRun& run) {
   checkSuggestOptions(o);
-  io::Report report("markers suggest");
-  report.input("scan", o.scan);
-  report.input("template", o.templ);
-  report.parameter("count", o.method.count);
-  report.parameter("search_mm", o.method.searchMm);
-  report.parameter("final_search_mm", o.method.finalSearchMm);
-  report.parameter("rounds", o.method.rounds);
-  report.parameter("smoothness", o.method.smoothness);
-  report.parameter("sigma_mm", o.method.sigmaMm);
-  report.parameter("seed", o.method.seed);
+  run.report.input("scan", o.scan);
+  run.report.input("template", o.templ);
+  run.report.parameter("count", o.method.count);
+  run.report.parameter("search_mm", o.method.searchMm);
+  run.report.parameter("final_search_mm", o.method.finalSearchMm);
+  run.report.parameter("rounds", o.method.rounds);
+  run.report.parameter("smoothness", o.method.smoothness);
+  run.report.parameter("sigma_mm", o.method.sigmaMm);
+  run.report.parameter("seed", o.method.seed);
   const TriMesh templ = readTemplateSurface(o.templ);
   const Image scan = io::readScan(o.scan);
   std::vector<std::pair<std::string, double>> reading;
   StageClock clock(reading);
-  const MatrixX3d targets = placementTargets(o, report);
+  const MatrixX3d targets = placementTargets(o, run.report);
   clock.end("placement");
   patient::MarkerSuggestionOptions options = o.method;
   options.polarity = parsePolarity(o.polarity);
@@ -204,9 +201,9 @@ void runSuggest(const SuggestOptions& o) {
   const patient::MarkerSuggestions suggested = patient::suggestMarkers(scan, templ, targets, options);
   // Reading the points the template is placed on counts as placement.
   for (const auto& [stage, seconds] : suggested.stageSeconds)
-    report.stage(stage, seconds + (stage == "placement" ? reading.front().second : 0.0));
+    run.report.stage(stage, seconds + (stage == "placement" ? reading.front().second : 0.0));
   writeSuggestions(suggested, {o.out, o.placedOut, o.templ, o.polarity, o.method.count}, scan.geometry, o.common,
-                   report);
+                   run.report);
 }
 
 void addSuggest(CLI::App& markers) {
@@ -249,7 +246,7 @@ void addSuggest(CLI::App& markers) {
       "move along their normals to the strongest edge within --final-search-mm with the organ's tissue inside; the\n"
       "most confident, spread out, are kept. Each point's description gives its confidence (0..1). See\n"
       "docs/methods/marker-suggestions.md.");
-  cmd->callback([o] { runSuggest(*o); });
+  cmd->callback([o] { runCommand("markers suggest", o->common, [&](CommandRun& run) { runSuggest(*o, run); }); });
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // vesalius patient: one patient's CT (and its organ/bone segmentation) in, that patient's anatomy out
 // (patient/virtual_patient.h). Reads the inputs and the organ template library, runs the pipeline, writes
 // the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
+#include "command_runner.h"
 #include "common.h"
 #include "full_body_sources.h"
 #include "patient_outputs.h"
@@ -70,7 +71,7 @@ ReferenceAnatomy fullBodyReference(const PatientOptions& o) {
   return shippedFullBodyReference(o.referenceOrgans);
 }
 
-void runPatient(const PatientOptions& o) {
+void runPatient(const PatientOptions& o, CommandRun& run) {
   if (o.organTable.size() && o.organs.empty()) throw UsageError("patient: --organ-table needs --organs");
   for (const std::string& input : {o.scan, o.organs, o.organTable, o.reference, o.motion, o.templates})
     if (!input.empty()) protectInput(input);
@@ -79,14 +80,12 @@ void runPatient(const PatientOptions& o) {
   if (!o.pose.empty() && !o.motion.empty()) throw UsageError("patient: give --pose or --motion, not both");
   if (!posing::isSkinningMethod(o.posing.method)) throw UsageError("patient: --method must be lbs, dqs, cor or fem");
   if (!o.pose.empty()) checkPoseJoints(o);
-  io::Report report("patient");
-  report.input("scan", o.scan);
-  if (!o.organs.empty()) report.input("organs", o.organs);
-  report.input("templates", o.templates);
-  report.parameter("markers_per_organ", o.pipeline.organFit.markers);
-  report.parameter("organ_tets", o.pipeline.organFit.targetTets);
-  report.parameter("refits", o.pipeline.organFit.refits);
-  Progress progress(o.common.progressStyle());
+  run.report.input("scan", o.scan);
+  if (!o.organs.empty()) run.report.input("organs", o.organs);
+  run.report.input("templates", o.templates);
+  run.report.parameter("markers_per_organ", o.pipeline.organFit.markers);
+  run.report.parameter("organ_tets", o.pipeline.organFit.targetTets);
+  run.report.parameter("refits", o.pipeline.organFit.refits);
 
   const Image scan = io::readScan(o.scan);
   std::optional<LabelMap> organs;
@@ -109,13 +108,13 @@ void runPatient(const PatientOptions& o) {
     if (o.rigVoxelSize > 0) rig->voxelSize = o.rigVoxelSize;
   }
   if (o.complete) {
-    progress.begin("reference", "the full-body reference");
+    run.progress.begin("reference", "the full-body reference");
     reference = fullBodyReference(o);
-    progress.end();
+    run.progress.end();
     pipeline.fullBodyReference = &*reference;
   }
   const patient::VirtualPatient p = patient::buildVirtualPatient(scan, organs ? &*organs : nullptr, templates,
-                                                                 pipeline, o.scan, o.organs, &progress);
+                                                                 pipeline, o.scan, o.organs, &run.progress);
   std::optional<PatientPose> pose;
   if (!o.pose.empty() || motion) {
     if (!p.rig) throw BadInput(o.organs.empty() ? o.scan : o.organs, "cannot pose the patient: " + p.noRigBecause);
@@ -127,14 +126,13 @@ void runPatient(const PatientOptions& o) {
     pose->frame = o.frame;
     pose->world = motion ? RetargetedMotion(*motion, "", false, skeleton).pose(o.frame)
                          : posing::poseFromJointAngles(skeleton, posing::parseJointAngles(o.pose));
-    progress.begin("pose", o.posing.method + " skinning, the scan re-posed");
+    run.progress.begin("pose", o.posing.method + " skinning, the scan re-posed");
     pose->posed = patient::posePatient(*p.rig, pose->world, scan, organs ? &*organs : nullptr, o.posing);
-    progress.end();
+    run.progress.end();
   }
 
   writeFolderAtomically(o.out, o.common.writeOptions(),
-                        [&](const std::string& staged) { writePatientFolder(scan, p, pose ? &*pose : nullptr, o.png, staged, report); });
-  if (!o.common.report.empty()) o.common.finish(report);
+                        [&](const std::string& staged) { writePatientFolder(scan, p, pose ? &*pose : nullptr, o.png, staged, run.report); });
 
   const ReferenceAnatomy& model = p.model();
   std::cout << std::fixed << std::setprecision(2) << "\nSummary\n  " << o.out << "/anatomy: "
@@ -237,7 +235,7 @@ void addPatientCommand(CLI::App& app) {
                           "  vesalius patient --scan ct.nii.gz --organs seg.nii.gz --organ-table labels_total_v1.tsv "
                           "--out patient --pose 'femur_l=-30,0,0; femur_r=-30,0,0'\n") +
               kOutputs);
-  cmd->callback([o] { runPatient(*o); });
+  cmd->callback([o] { runCommand("patient", o->common, [&](CommandRun& run) { runPatient(*o, run); }); });
 }
 
 void addDemoCommand(CLI::App& app) {
@@ -256,7 +254,7 @@ void addDemoCommand(CLI::App& app) {
   cmd->footer(std::string("Example:\n  vesalius demo --out demo-output --force\n"
                           "Most of its time goes to the organ fits and the full-body reference's completion. ") +
               kOutputs);
-  cmd->callback([o] { runPatient(*o); });
+  cmd->callback([o] { runCommand("patient", o->common, [&](CommandRun& run) { runPatient(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

@@ -4,6 +4,7 @@
 // the tissue vertices that leave their tet. The skinned tets first get their rest volumes back
 // (posing/volume_restoration.h) unless --no-restore-volume, then the tets skinning inverts or flattens are
 // repaired (posing/untangle_tets.h) unless --no-untangle.
+#include "command_runner.h"
 #include "common.h"
 #include "pose_outputs.h"
 #include "posing_session.h"
@@ -77,18 +78,17 @@ void checkOptions(const PoseOptions& o) {
   if (!o.pngDir.empty()) checkOutputFolder(o.pngDir, o.common.writeOptions());
 }
 
-void runPose(const PoseOptions& o) {
+void runPose(const PoseOptions& o, CommandRun& run) {
   checkOptions(o);
-  io::Report report("pose");
-  report.input("anatomy", o.anatomy);
-  report.parameter("method", o.method);
+  run.report.input("anatomy", o.anatomy);
+  run.report.parameter("method", o.method);
   const posing::RigPoser session = [&] {
-    auto timer = report.time("embed");
+    auto timer = run.report.time("embed");
     return readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);
   }();
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();
-  const std::vector<PoseSpec> poses = readPoses(o, rig, report);
+  const std::vector<PoseSpec> poses = readPoses(o, rig, run.report);
   Volumes volumes;
   if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
   if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
@@ -99,8 +99,7 @@ void runPose(const PoseOptions& o) {
   double skinningSeconds = 0, restoreSeconds = 0, untangleSeconds = 0;  // skinning includes both
   // Every pose into the staging folders `out` and `pngDir`, then quality.tsv.
   const auto poseAll = [&](const std::string& out, const std::string& pngDir) {
-    Progress progress(o.common.progressStyle());
-    progress.begin("pose", o.method);
+    run.progress.begin("pose", o.method);
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const auto start = std::chrono::steady_clock::now();
       MatrixX3d tets;
@@ -121,9 +120,9 @@ void runPose(const PoseOptions& o) {
         const std::string png = pngDir.empty() ? "" : pngDir + "/" + (name.empty() ? "pose" : name) + ".png";
         writePose(rig, meshes, carried, volumes, tets, poses[p].world, dir, png);
       }
-      progress.update(double(p + 1) / poses.size());
+      run.progress.update(double(p + 1) / poses.size());
     }
-    progress.end();
+    run.progress.end();
     writeQualityTable(out + "/quality.tsv", poses, quality, o.method, {});
   };
   // Both folders whole or not at all: the renders' folder is moved into place just before --out.
@@ -131,18 +130,17 @@ void runPose(const PoseOptions& o) {
     if (o.pngDir.empty()) return poseAll(out, "");
     writeFolderAtomically(o.pngDir, o.common.writeOptions(), [&](const std::string& pngDir) { poseAll(out, pngDir); });
   });
-  report.output("poses", o.out);
-  report.metric("poses", poses.size());
+  run.report.output("poses", o.out);
+  run.report.metric("poses", poses.size());
   const double skinOnly = skinningSeconds - restoreSeconds - untangleSeconds;
-  report.metric("skinning_seconds_per_pose", skinOnly / poses.size());
-  report.metric("restore_seconds_per_pose", restoreSeconds / poses.size());
-  report.metric("untangle_seconds_per_pose", untangleSeconds / poses.size());
+  run.report.metric("skinning_seconds_per_pose", skinOnly / poses.size());
+  run.report.metric("restore_seconds_per_pose", restoreSeconds / poses.size());
+  run.report.metric("untangle_seconds_per_pose", untangleSeconds / poses.size());
   std::cout << o.out << ": " << poses.size() << " pose(s) by " << o.method << ", " << meshes.size()
             << " mesh(es) each; skinning " << 1000 * skinOnly / poses.size() << " ms, restoring the volume "
             << 1000 * restoreSeconds / poses.size() << " ms and untangling " << 1000 * untangleSeconds / poses.size()
             << " ms per pose\n";
-  reportWorstQuality(poses, quality, meter.insideAtRest(), report);
-  o.common.finish(report);
+  reportWorstQuality(poses, quality, meter.insideAtRest(), run.report);
 }
 
 }  // namespace
@@ -182,7 +180,7 @@ void addPoseCommand(CLI::App& app) {
       "--method cor --quality-only --out cor-quality");
   cmd->callback([o, every] {
     o->everyGiven = every->count() > 0;
-    runPose(*o);
+    runCommand("pose", o->common, [&](CommandRun& run) { runPose(*o, run); });
   });
 }
 

@@ -3,6 +3,7 @@
 // vesalius reference full-body: MakeHuman's skin with an OpenSim model's bones placed inside it
 // (patient/full_body_reference.h). vesalius reference organs: a labelled CT's organs and muscles carried
 // into that reference's skin (patient/reference_organs.h), the folder shipped as templates/reference-organs/.
+#include "command_runner.h"
 #include "common.h"
 #include "full_body_sources.h"
 #include "shipped_data.h"
@@ -43,14 +44,12 @@ struct OrgansOptions {
   CommonOptions common;
 };
 
-void runReference(const ReferenceOptions& o) {
+void runReference(const ReferenceOptions& o, CommandRun& run) {
   checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
-  io::Report report("reference torso");
-  report.input("scan", o.scan);
-  report.input("labels", o.labels);
-  report.parameter("skin_faces", o.skinFaces);
-  report.parameter("tissue_faces", o.tissueFaces);
-  Progress progress(o.common.progressStyle());
+  run.report.input("scan", o.scan);
+  run.report.input("labels", o.labels);
+  run.report.parameter("skin_faces", o.skinFaces);
+  run.report.parameter("tissue_faces", o.tissueFaces);
   const Image ct = io::readScan(o.scan);
   const LabelMap labels = io::readLabelMap(o.labels, o.table);
   patient::ScanAnatomyOptions surfaces;
@@ -58,36 +57,34 @@ void runReference(const ReferenceOptions& o) {
   surfaces.tissueFaces = o.tissueFaces;
   ReferenceAnatomy anatomy;
   {
-    auto timer = report.time("skin and tissues");
-    anatomy = patient::scanAnatomy(ct, labels, surfaces, o.scan, o.labels, &progress);
+    auto timer = run.report.time("skin and tissues");
+    anatomy = patient::scanAnatomy(ct, labels, surfaces, o.scan, o.labels, &run.progress);
   }
   anatomy.name = o.name.empty() ? "torso (" + o.scan + ")" : o.name;
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
-  report.output("reference", o.out);
+  run.report.output("reference", o.out);
   int bones = 0;
   for (const ReferenceTissue& t : anatomy.tissues) bones += t.kind == TissueKind::Bone;
-  report.metric("tissues", anatomy.tissues.size());
-  report.metric("bones", bones);
-  report.metric("skin_vertices", anatomy.skin.V.rows());
-  report.metric("skin_cut_vertices", anatomy.skinCutVertices.size());
+  run.report.metric("tissues", anatomy.tissues.size());
+  run.report.metric("bones", bones);
+  run.report.metric("skin_vertices", anatomy.skin.V.rows());
+  run.report.metric("skin_cut_vertices", anatomy.skinCutVertices.size());
   std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices (" << anatomy.skinCutVertices.size()
             << " on the field of view's cut), " << anatomy.tissues.size()
             << " tissues (" << bones << " bones), sagittal normal " << anatomy.sagittal.normal.transpose() << "\n";
-  o.common.finish(report);
 }
 
 // The full-body reference (seed 000 §3; patient/full_body_reference.h): the files read, the reference
 // built, its bones' moves inside the skin reported.
-void runFullBody(const FullBodyOptions& o) {
+void runFullBody(const FullBodyOptions& o, CommandRun& run) {
   checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
-  io::Report report("reference full-body");
-  report.input("skin", o.skin);
-  report.input("skeleton", o.skeleton);
-  report.input("model", o.model);
+  run.report.input("skin", o.skin);
+  run.report.input("skeleton", o.skeleton);
+  run.report.input("model", o.model);
   patient::FullBodyReference built;
   {
     const patient::FullBodySources sources = readFullBodySources(o.skin, o.skeleton, o.baseMesh, o.model, o.organMeshes);
-    auto timer = report.time("placement");
+    auto timer = run.report.time("placement");
     built = patient::buildFullBodyReference(sources, o.skeleton);
   }
   const ReferenceAnatomy& anatomy = built.anatomy;
@@ -98,48 +95,45 @@ void runFullBody(const FullBodyOptions& o) {
                        {"scale", u.scale}, {"turn_degrees", u.turnDegrees},
                        {"centroid_shift_mm", u.centroidShiftMm}, {"joints", u.joints},
                        {"joint_shift_mm", u.jointShiftMm}};
-  report.metric("bones_into_skin", changes);
-  report.metric("bone_vertices_outside_skin_before", built.outsideBefore);
-  report.metric("bone_vertices_outside_skin", built.outsideAfter);
+  run.report.metric("bones_into_skin", changes);
+  run.report.metric("bone_vertices_outside_skin_before", built.outsideBefore);
+  run.report.metric("bone_vertices_outside_skin", built.outsideAfter);
   io::writeReferenceAnatomy(o.out, anatomy, o.common.writeOptions());
-  report.output("reference", o.out);
-  report.metric("bones", anatomy.tissues.size() - softTissueCount(anatomy));
-  report.metric("organs_and_muscles", softTissueCount(anatomy));
-  report.metric("points", anatomy.points.size());
-  report.metric("head_slices", built.headSlices);
+  run.report.output("reference", o.out);
+  run.report.metric("bones", anatomy.tissues.size() - softTissueCount(anatomy));
+  run.report.metric("organs_and_muscles", softTissueCount(anatomy));
+  run.report.metric("points", anatomy.points.size());
+  run.report.metric("head_slices", built.headSlices);
   const long soft = softTissueCount(anatomy);
   std::cout << o.out << ": skin of " << anatomy.skin.V.rows() << " vertices, " << anatomy.tissues.size() - soft
             << " bone meshes, " << soft << " organs and muscles, " << anatomy.points.size()
             << " points (muscle paths and joint centres)\n";
-  o.common.finish(report);
 }
 
 // The organs and muscles of a labelled CT carried into the full-body reference (patient/reference_organs.h).
-void runOrgans(const OrgansOptions& o) {
+void runOrgans(const OrgansOptions& o, CommandRun& run) {
   for (const std::string& input : {o.scan, o.organs, o.organTable, o.reference, o.templates})
     if (!input.empty()) protectInput(input);
   checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
-  io::Report report("reference organs");
-  report.input("scan", o.scan);
-  report.input("organs", o.organs);
-  report.input("templates", o.templates);
-  Progress progress(o.common.progressStyle());
+  run.report.input("scan", o.scan);
+  run.report.input("organs", o.organs);
+  run.report.input("templates", o.templates);
   const Image ct = io::readScan(o.scan);
   const LabelMap organs = io::readLabelMap(o.organs, o.organTable);
   const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
   ReferenceAnatomy reference;
   if (!o.reference.empty()) {
-    report.input("reference", o.reference);
+    run.report.input("reference", o.reference);
     reference = io::readReferenceAnatomy(o.reference);
   } else {
-    progress.begin("reference", "the full-body reference");
+    run.progress.begin("reference", "the full-body reference");
     reference = shippedFullBodyReference(false);
-    progress.end();
+    run.progress.end();
   }
   const patient::ReferenceOrgans made =
-      patient::referenceOrgans(ct, organs, templates, reference, o.method, o.scan, o.organs, &progress);
+      patient::referenceOrgans(ct, organs, templates, reference, o.method, o.scan, o.organs, &run.progress);
   io::writeReferenceAnatomy(o.out, made.anatomy, o.common.writeOptions());
-  report.output("reference", o.out);
+  run.report.output("reference", o.out);
   nlohmann::json tissues;
   long outside = 0;
   for (const patient::CarriedTissue& t : made.carried) {
@@ -147,15 +141,14 @@ void runOrgans(const OrgansOptions& o) {
                        {"outside_skin_carried", t.outsideCarried}, {"outside_skin", t.outsideSkin}};
     outside += t.outsideSkin;
   }
-  report.metric("tissues", tissues);
-  report.metric("scan_skin_to_completed_mean_mm", made.scanSkinToCompletedMeanMm);
-  report.metric("bend_largest_mm", made.bendLargestMm);
+  run.report.metric("tissues", tissues);
+  run.report.metric("scan_skin_to_completed_mean_mm", made.scanSkinToCompletedMeanMm);
+  run.report.metric("bend_largest_mm", made.bendLargestMm);
   nlohmann::json stages;
   for (const auto& [stage, seconds] : made.stageSeconds) stages[stage] = seconds;
-  report.metric("stage_seconds", stages);
+  run.report.metric("stage_seconds", stages);
   std::cout << o.out << ": " << made.anatomy.tissues.size() << " organs and muscles in the reference's skin ("
             << outside << " vertices outside it)\n";
-  o.common.finish(report);
 }
 
 }  // namespace
@@ -178,7 +171,7 @@ void addReferenceCommand(CLI::App& app) {
       "    --labels testdata/ct-abdomen-pelvis/example_seg_total_v1_for_example_ct.nii.gz \\\n"
       "    --label-table testdata/ct-abdomen-pelvis/labels_total_v1.tsv --out torso-reference\n"
       "Trunk bones (vertebrae, pelvis, rib cage) are marked symmetric; see docs/methods/anatomy-transfer.md.");
-  torso->callback([o] { runReference(*o); });
+  torso->callback([o] { runCommand("reference torso", o->common, [&](CommandRun& run) { runReference(*o, run); }); });
 
   auto f = std::make_shared<FullBodyOptions>();
   CLI::App* full = cmd->add_subcommand("full-body", "Reference anatomy from a MakeHuman skin with an OpenSim skeleton placed inside it");
@@ -202,7 +195,7 @@ void addReferenceCommand(CLI::App& app) {
       "Examples:\n  vesalius reference full-body --out body-reference       # the shipped body and model\n"
       "  vesalius reference full-body --skin my_makehuman_body.obj --out my-reference\n"
       "The skeleton is placed by seed 004's body frame and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
-  full->callback([f] { runFullBody(*f); });
+  full->callback([f] { runCommand("reference full-body", f->common, [&](CommandRun& run) { runFullBody(*f, run); }); });
 
   auto g = std::make_shared<OrgansOptions>();
   CLI::App* organs = cmd->add_subcommand(
@@ -233,7 +226,7 @@ void addReferenceCommand(CLI::App& app) {
       "    --organ-table testdata/ct-abdomen-pelvis/labels_total_v1.tsv --out templates/reference-organs\n"
       "Keeps the abdominal and pelvic organs, their vessels and the gluteal, iliopsoas and back muscles; "
       "see docs/virtual-patient.md.");
-  organs->callback([g] { runOrgans(*g); });
+  organs->callback([g] { runCommand("reference organs", g->common, [&](CommandRun& run) { runOrgans(*g, run); }); });
 }
 
 }  // namespace vesalius::cli

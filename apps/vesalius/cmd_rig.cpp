@@ -1,6 +1,7 @@
 // vesalius rig: the posing rig of a body (seed 001 §3.1-3.5 preprocessing) from a skin and a skeleton, from
 // a label map with segmented bones, or from a reference anatomy with OpenSim's bone meshes placed in its
 // skin (rigging/body_rig.h), written as a rig folder with the meshes it will carry (io/anatomy_rig_io.h).
+#include "command_runner.h"
 #include "common.h"
 #include "posing_session.h"
 
@@ -86,7 +87,6 @@ void finishRig(const RigOptions& o, rigging::BuiltRig& built, std::vector<std::p
   std::cout << o.out << ": " << rig.tets.V.rows() << " vertices, " << rig.tets.T.rows() << " tets, "
             << rig.boneJoint.size() << " of " << rig.skeleton.joints.size() << " joints with bone regions ("
             << boneVertices << " bone vertices), " << meshes.size() << " mesh(es)\n";
-  o.common.finish(report);
 }
 
 void reportParameters(const RigOptions& o, io::Report& report) {
@@ -95,52 +95,46 @@ void reportParameters(const RigOptions& o, io::Report& report) {
   report.parameter("cor_centres", o.rig.corCentres);
 }
 
-void runSkinRig(const RigOptions& o) {
+void runSkinRig(const RigOptions& o, CommandRun& run) {
   if (o.space != "auto" && o.space != "makehuman" && o.space != "lps")
     throw UsageError("rig: --space must be auto, makehuman or lps");
   const bool makeHuman = o.space == "makehuman" || (o.space == "auto" && fileExtension(o.skeleton) == ".mhskel");
-  io::Report report("rig");
-  report.input("skin", o.skin);
-  report.input("skeleton", o.skeleton);
-  reportParameters(o, report);
-  report.parameter("capsule_radius_fraction", o.rig.capsules.radiusFraction);
-  report.parameter("capsule_end_trim", o.rig.capsules.endTrim);
-  Progress progress(o.common.progressStyle());
+  run.report.input("skin", o.skin);
+  run.report.input("skeleton", o.skeleton);
+  reportParameters(o, run.report);
+  run.report.parameter("capsule_radius_fraction", o.rig.capsules.radiusFraction);
+  run.report.parameter("capsule_end_trim", o.rig.capsules.endTrim);
   const TriMesh asRead = io::readTriMesh(o.skin);
   const Skeleton skeleton = readSkeleton(o, asRead, makeHuman);
   const TriMesh skin = toLps(asRead, makeHuman);
-  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, skeleton, o.rig, o.skin, o.skeleton, &progress);
-  finishRig(o, built, withTissues(o, {{"skin" + fileExtension(o.skin), skin}}, makeHuman), report);
+  rigging::BuiltRig built = rigging::rigFromSkeleton(skin, skeleton, o.rig, o.skin, o.skeleton, &run.progress);
+  finishRig(o, built, withTissues(o, {{"skin" + fileExtension(o.skin), skin}}, makeHuman), run.report);
 }
 
-void runLabelRig(const RigOptions& o) {
-  io::Report report("rig");
-  report.input("labels", o.labels);
-  reportParameters(o, report);
-  report.parameter("margin_mm", o.rig.margin);
-  Progress progress(o.common.progressStyle());
+void runLabelRig(const RigOptions& o, CommandRun& run) {
+  run.report.input("labels", o.labels);
+  reportParameters(o, run.report);
+  run.report.parameter("margin_mm", o.rig.margin);
   const LabelMap map = io::readLabelMap(o.labels, o.labelTable);
   posing::SkeletonFromBonesOptions bones = o.bones;
   if (!std::isnan(o.acetabulumDistance)) bones.acetabulumDistance = o.acetabulumDistance;
-  rigging::BuiltRig built = rigging::rigFromBoneLabels(map, bones, o.rig, o.labels, &progress);
-  finishRig(o, built, withTissues(o, std::move(built.regionSurfaces)), report);
+  rigging::BuiltRig built = rigging::rigFromBoneLabels(map, bones, o.rig, o.labels, &run.progress);
+  finishRig(o, built, withTissues(o, std::move(built.regionSurfaces)), run.report);
 }
 
-void runReferenceRig(const RigOptions& o) {
-  io::Report report("rig");
-  report.input("reference", o.reference);
-  reportParameters(o, report);
-  Progress progress(o.common.progressStyle());
+void runReferenceRig(const RigOptions& o, CommandRun& run) {
+  run.report.input("reference", o.reference);
+  reportParameters(o, run.report);
   const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
   posing::SkeletonFromBoneMeshesOptions bones = o.meshBones;
   if (!std::isnan(o.acetabulumDistance)) bones.acetabulumDistance = o.acetabulumDistance;
-  rigging::BuiltRig built = rigging::rigFromReference(reference, bones, o.rig, o.reference, &progress);
+  rigging::BuiltRig built = rigging::rigFromReference(reference, bones, o.rig, o.reference, &run.progress);
   std::vector<std::pair<std::string, TriMesh>> meshes{{"skin.obj", reference.skin}};
   for (const ReferenceTissue& t : reference.tissues) meshes.emplace_back(t.name + ".obj", t.mesh);
-  finishRig(o, built, withTissues(o, std::move(meshes)), report);
+  finishRig(o, built, withTissues(o, std::move(meshes)), run.report);
 }
 
-void runRig(const RigOptions& o) {
+void runRig(const RigOptions& o, CommandRun& run) {
   const bool fromSkin = !o.skin.empty() || !o.skeleton.empty();
   if (int(fromSkin) + int(!o.labels.empty()) + int(!o.reference.empty()) != 1)
     throw UsageError("rig: give --skin and --skeleton, or --labels, or --reference (one of them)");
@@ -148,8 +142,8 @@ void runRig(const RigOptions& o) {
   if (!o.labelTable.empty() && o.labels.empty()) throw UsageError("rig: --label-table needs --labels");
   // The rig folder is written whole at the end (io/anatomy_rig_io.h); its path is checked before the work.
   checkOutputFolder(o.out, o.common.writeOptions());
-  if (!o.reference.empty()) return runReferenceRig(o);
-  fromSkin ? runSkinRig(o) : runLabelRig(o);
+  if (!o.reference.empty()) return runReferenceRig(o, run);
+  fromSkin ? runSkinRig(o, run) : runLabelRig(o, run);
 }
 
 }  // namespace
@@ -204,7 +198,7 @@ void addRigCommand(CLI::App& app) {
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
       "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
       "(about 25 s and 23k tets; at the defaults about 130k tets, 70 s)");
-  cmd->callback([o] { runRig(*o); });
+  cmd->callback([o] { runCommand("rig", o->common, [&](CommandRun& run) { runRig(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

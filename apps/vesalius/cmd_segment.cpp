@@ -1,4 +1,5 @@
 // vesalius segment: tissue classes of a scan as a label map with its label table and a slice picture.
+#include "command_runner.h"
 #include "common.h"
 
 #include "vesalius/core/atomic_file.h"
@@ -40,21 +41,19 @@ LabelMap classify(const Image& scan, const SegmentOptions& o, Progress& progress
   return segmentation::segmentCtTissues(scan, options, &progress);
 }
 
-void runSegment(const SegmentOptions& o) {
+void runSegment(const SegmentOptions& o, CommandRun& run) {
   // The picture's default name comes from --out, so no option check has seen it: checked before the work,
   // not after the label map is written.
   const std::string png = o.png.empty() ? defaultPngPath(o.out) : o.png;
   checkNotAnInput(png);
   if (!o.common.force && std::filesystem::exists(png)) throw UsageError(png + ": exists; pass --force to replace it");
-  io::Report report("segment");
-  report.input("scan", o.scan);
-  report.parameter("modality", o.modality);
-  report.parameter("skin_thickness_mm", o.skinThickness);
-  Progress progress(o.common.progressStyle());
+  run.report.input("scan", o.scan);
+  run.report.parameter("modality", o.modality);
+  run.report.parameter("skin_thickness_mm", o.skinThickness);
 
   Image scan;
   {
-    auto timer = report.time("read scan");
+    auto timer = run.report.time("read scan");
     scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
   }
   // A DICOM SEG refers to the series it was made from, when the scan is one.
@@ -62,8 +61,8 @@ void runSegment(const SegmentOptions& o) {
       io::isDicomSegPath(o.out) ? io::readDicomSource(o.scan, o.series) : std::nullopt;
   LabelMap labels;
   {
-    auto timer = report.time("segment");
-    labels = classify(scan, o, progress);
+    auto timer = run.report.time("segment");
+    labels = classify(scan, o, run.progress);
   }
   // The labels, their tables and their picture all or none: a picture that fails leaves no labels.
   std::vector<std::string> outputs = io::labelMapFiles(o.out);
@@ -73,9 +72,8 @@ void runSegment(const SegmentOptions& o) {
     else io::writeLabelMap(files.front(), labels);
     viz::writeSliceOverlayPng(scan, labels, files.back());
   });
-  report.output("labels", o.out);
-  report.output("png", png);
-  o.common.finish(report);
+  run.report.output("labels", o.out);
+  run.report.output("png", png);
   std::cout << "labels: " << o.out << "\npicture: " << png << '\n';
 }
 
@@ -105,7 +103,7 @@ void addSegmentCommand(CLI::App& app) {
   cmd->footer("Examples:\n  vesalius segment --scan testdata/ct-abdomen-pelvis/example_ct.nii.gz --modality ct "
               "--out labels.nii.gz\n  vesalius segment --scan testdata/head-mri/ch2.nii.gz --modality mri "
               "--out head.nii.gz\n  vesalius segment --scan ct-series/ --modality ct --out labels.seg.dcm");
-  cmd->callback([o] { runSegment(*o); });
+  cmd->callback([o] { runCommand("segment", o->common, [&](CommandRun& run) { runSegment(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

@@ -1,5 +1,6 @@
 // vesalius separate: fitted organs that touch pushed apart where they overlap (seed 002 §4.1.4), each
 // mesh moved only in a contact region around its penetrating vertices (fit/interpenetration.h).
+#include "command_runner.h"
 #include "common.h"
 
 #include "vesalius/core/error.h"
@@ -52,19 +53,18 @@ TetMesh readFitted(const std::string& path) {
   return mesh;
 }
 
-void runSeparate(const SeparateOptions& o) {
+void runSeparate(const SeparateOptions& o, CommandRun& run) {
   checkOutputs(o);
-  io::Report report("separate");
-  for (const std::string& m : o.meshes) report.input("mesh", m);
-  report.parameter("rings", o.solver.rings);
-  report.parameter("max_rounds", o.solver.maxRounds);
-  report.parameter("clearance_mm", o.solver.clearance);
+  for (const std::string& m : o.meshes) run.report.input("mesh", m);
+  run.report.parameter("rings", o.solver.rings);
+  run.report.parameter("max_rounds", o.solver.maxRounds);
+  run.report.parameter("clearance_mm", o.solver.clearance);
 
   std::vector<TetMesh> meshes;
   for (const std::string& m : o.meshes) meshes.push_back(readFitted(m));
   std::vector<fit::InterpenetrationReport> pairs;
   {
-    auto timer = report.time("separate");
+    auto timer = run.report.time("separate");
     pairs = fit::removeInterpenetrations(meshes, o.solver);
   }
   std::size_t k = 0;
@@ -72,12 +72,12 @@ void runSeparate(const SeparateOptions& o) {
     for (std::size_t j = 0; j < i; ++j, ++k) {
       const fit::InterpenetrationReport& r = pairs[k];
       const std::string a = fs::path(o.meshes[i]).filename().string(), b = fs::path(o.meshes[j]).filename().string();
-      report.metric("pair", {{"meshes", a + " / " + b},
-                             {"penetrating_vertices_before", r.penetratingBefore},
-                             {"penetrating_vertices_after", r.penetratingAfter},
-                             {"rounds", r.rounds},
-                             {"region_tets", {r.regionTets[0], r.regionTets[1]}},
-                             {"max_displacement_mm", r.maxDisplacement}});
+      run.report.metric("pair", {{"meshes", a + " / " + b},
+                                 {"penetrating_vertices_before", r.penetratingBefore},
+                                 {"penetrating_vertices_after", r.penetratingAfter},
+                                 {"rounds", r.rounds},
+                                 {"region_tets", {r.regionTets[0], r.regionTets[1]}},
+                                 {"max_displacement_mm", r.maxDisplacement}});
       std::cout << a << " / " << b << ": " << r.penetratingBefore << " -> " << r.penetratingAfter
                 << " penetrating boundary vertices, largest move " << std::fixed << std::setprecision(2)
                 << r.maxDisplacement << " mm, regions " << r.regionTets[0] << " + " << r.regionTets[1] << " tets\n";
@@ -86,8 +86,7 @@ void runSeparate(const SeparateOptions& o) {
     for (std::size_t i = 0; i < meshes.size(); ++i)
       io::writeTetMesh(staging + "/" + fs::path(o.meshes[i]).filename().string(), meshes[i]);
   });
-  for (const std::string& in : o.meshes) report.output("mesh", outputPath(o, in));
-  o.common.finish(report);
+  for (const std::string& in : o.meshes) run.report.output("mesh", outputPath(o, in));
 }
 
 }  // namespace
@@ -115,7 +114,7 @@ void addSeparateCommand(CLI::App& app) {
       "Example (two muscles fitted one after the other):\n"
       "  vesalius separate --mesh gluteus_medius.vtu --mesh gluteus_minimus.vtu --out separated/\n"
       "Nothing outside the contact regions moves; a mesh wholly inside another is refused (exit 4).");
-  cmd->callback([o] { runSeparate(*o); });
+  cmd->callback([o] { runCommand("separate", o->common, [&](CommandRun& run) { runSeparate(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

@@ -1,4 +1,5 @@
 // vesalius surface: closed surfaces of labels, one mesh per label.
+#include "command_runner.h"
 #include "common.h"
 
 #include "vesalius/core/error.h"
@@ -73,15 +74,14 @@ std::vector<meshing::LabelSurface> interfaceSurfaces(const LabelMap& map, std::v
   return surfaces;
 }
 
-void runSurface(const SurfaceOptions& o) {
-  io::Report report("surface");
-  report.input("labels", o.labels);
-  report.parameter("smooth_iterations", o.smoothIterations >= 0 ? o.smoothIterations
-                                        : o.shared ? meshing::SharedSurfaceOptions{}.smoothingIterations
-                                                   : meshing::SurfaceOptions{}.smoothingIterations);
-  report.parameter("target_faces", o.targetFaces);
-  report.parameter("shared", o.shared);
-  report.parameter("touching", o.touching);
+void runSurface(const SurfaceOptions& o, CommandRun& run) {
+  run.report.input("labels", o.labels);
+  run.report.parameter("smooth_iterations", o.smoothIterations >= 0 ? o.smoothIterations
+                                            : o.shared ? meshing::SharedSurfaceOptions{}.smoothingIterations
+                                                       : meshing::SurfaceOptions{}.smoothingIterations);
+  run.report.parameter("target_faces", o.targetFaces);
+  run.report.parameter("shared", o.shared);
+  run.report.parameter("touching", o.touching);
   if (o.shared && o.targetFaces > 0) throw UsageError("surface: --target-faces cannot keep --shared boundaries shared");
   if (!o.touching.empty() && !o.shared) throw UsageError("surface: --touching needs --shared");
   if (!o.touching.empty() && o.selected.empty()) throw UsageError("surface: --touching needs at least one --label");
@@ -97,20 +97,19 @@ void runSurface(const SurfaceOptions& o) {
   meshing::SurfaceOptions options;
   if (o.smoothIterations >= 0) options.smoothingIterations = o.smoothIterations;
   options.targetFaces = o.targetFaces;
-  Progress progress(o.common.progressStyle());
   std::vector<meshing::LabelSurface> surfaces;
   {
-    auto timer = report.time("surfaces");
-    surfaces = !o.touching.empty() ? interfaceSurfaces(map, ids, o, report, progress)
-               : o.shared          ? sharedSurfaces(map, ids, o, report, progress)
-                                   : meshing::labelSurfaces(map, ids, options, &progress);
+    auto timer = run.report.time("surfaces");
+    surfaces = !o.touching.empty() ? interfaceSurfaces(map, ids, o, run.report, run.progress)
+               : o.shared          ? sharedSurfaces(map, ids, o, run.report, run.progress)
+                                   : meshing::labelSurfaces(map, ids, options, &run.progress);
   }
   if (single) {
     const meshing::LabelSurface& s = surfaces.front();
     io::writeTriMesh(o.out, s.mesh, io::MeshWriteOptions{o.common.writeOptions()});
-    report.output(s.name, o.out);
+    run.report.output(s.name, o.out);
     std::cout << o.out << ": " << s.mesh.V.rows() << " vertices, " << s.mesh.F.rows() << " triangles\n";
-    return o.common.finish(report);
+    return;
   }
   // Label names come from the label table, a file: made safe, so that no name writes outside --out.
   std::vector<std::string> files;
@@ -127,10 +126,9 @@ void runSurface(const SurfaceOptions& o) {
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     const meshing::LabelSurface& s = surfaces[i];
     const std::string path = (std::filesystem::path(o.out) / files[i]).string();
-    report.output(s.name, path);
+    run.report.output(s.name, path);
     std::cout << path << ": " << s.mesh.V.rows() << " vertices, " << s.mesh.F.rows() << " triangles\n";
   }
-  o.common.finish(report);
 }
 
 }  // namespace
@@ -163,7 +161,7 @@ void addSurfaceCommand(CLI::App& app) {
               "  vesalius surface --labels seg.nii.gz --label hip_left --label femur_left --shared --out hip/\n"
               "  vesalius surface --labels seg.nii.gz --label hip_left --shared --touching gluteus_medius_left "
               "--out insertion.vtp");
-  cmd->callback([o] { runSurface(*o); });
+  cmd->callback([o] { runCommand("surface", o->common, [&](CommandRun& run) { runSurface(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

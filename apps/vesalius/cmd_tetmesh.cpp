@@ -1,4 +1,5 @@
 // vesalius tetmesh: a tetrahedral mesh of closed surfaces, or of labels of a label map (one region each).
+#include "command_runner.h"
 #include "common.h"
 #include "vesalius/rigging/label_regions.h"
 
@@ -100,7 +101,7 @@ std::string qualityText(const TetQualityReport& r, const io::TetMeshSummary& s) 
   return out.str();
 }
 
-void runTetmesh(const TetmeshOptions& o) {
+void runTetmesh(const TetmeshOptions& o, CommandRun& run) {
   if (o.surfaces.empty() == o.labels.empty()) throw UsageError("tetmesh: give --surface or --labels (not both)");
   if (o.body > 0 && o.labels.empty()) throw UsageError("tetmesh: --body needs --labels");
   if (o.shared && o.labels.empty()) throw UsageError("tetmesh: --shared needs --labels");
@@ -116,32 +117,30 @@ void runTetmesh(const TetmeshOptions& o) {
     value << o.tet.maxVolume;
     throw UsageError("tetmesh: --max-volume must be 0 (no bound) or a positive number of mm^3, not " + value.str());
   }
-  io::Report report("tetmesh");
-  for (const std::string& s : o.surfaces) report.input("surface", s);
-  if (!o.labels.empty()) report.input("labels", o.labels);
-  report.parameter("radius_edge", o.tet.radiusEdge);
-  report.parameter("min_dihedral", o.tet.minDihedral);
-  report.parameter("max_volume", o.tet.maxVolume);
-  report.parameter("target_tets", o.tet.targetTets);
-  Progress progress(o.common.progressStyle());
+  for (const std::string& s : o.surfaces) run.report.input("surface", s);
+  if (!o.labels.empty()) run.report.input("labels", o.labels);
+  run.report.parameter("radius_edge", o.tet.radiusEdge);
+  run.report.parameter("min_dihedral", o.tet.minDihedral);
+  run.report.parameter("max_volume", o.tet.maxVolume);
+  run.report.parameter("target_tets", o.tet.targetTets);
   TetMesh mesh;
   std::size_t regionCount = 0;
   if (o.shared) {
-    const meshing::SharedLabelSurfaces shared = sharedRegions(o, progress);
-    report.metric("repaired_voxels", shared.repairedVoxels);
+    const meshing::SharedLabelSurfaces shared = sharedRegions(o, run.progress);
+    run.report.metric("repaired_voxels", shared.repairedVoxels);
     regionCount = shared.ids.size();
-    auto timer = report.time("tetrahedralize");
+    auto timer = run.report.time("tetrahedralize");
     mesh = meshing::tetrahedralizeLabels(shared, o.tet, o.labels);
   } else {
-    const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, progress);
+    const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, run.progress);
     regionCount = regions.size();
-    auto timer = report.time("tetrahedralize");
+    auto timer = run.report.time("tetrahedralize");
     if (regions.size() == 1 && o.tet.targetTets > 0 && !o.tet.keepSurface) {
       // One surface to a tet target: a fine surface is coarsened first so that the target holds.
       meshing::BudgetedTets budgeted = meshing::tetrahedralizeWithinBudget(regions[0].surface, o.tet, regions[0].name);
       mesh = std::move(budgeted.tets);
       mesh.tetAttributes.integer[kLabel].setConstant(regions[0].label);
-      report.metric("tetrahedralized_faces", budgeted.surfaceFaces);
+      run.report.metric("tetrahedralized_faces", budgeted.surfaceFaces);
       if (budgeted.coarsenings > 0)
         std::cout << regions[0].name << ": " << regions[0].surface.F.rows() << " triangles coarsened to "
                   << budgeted.surfaceFaces << " for about " << o.tet.targetTets << " tets\n";
@@ -150,16 +149,15 @@ void runTetmesh(const TetmeshOptions& o) {
     }
   }
   io::writeTetMesh(o.out, mesh, io::MeshWriteOptions{o.common.writeOptions()});
-  report.output("tets", o.out);
+  run.report.output("tets", o.out);
   const TetQualityReport q = tetQualityReport(mesh.V, mesh.T);
-  report.metric("tets", q.tets);
-  report.metric("min_dihedral_deg", q.minDihedral);
-  report.metric("max_radius_edge", q.maxRadiusEdge);
-  report.metric("inverted", q.inverted);
+  run.report.metric("tets", q.tets);
+  run.report.metric("min_dihedral_deg", q.minDihedral);
+  run.report.metric("max_radius_edge", q.maxRadiusEdge);
+  run.report.metric("inverted", q.inverted);
   std::cout << o.out << ": " << mesh.V.rows() << " vertices, " << mesh.T.rows() << " tetrahedra in "
             << regionCount << " region(s)\n"
             << qualityText(q, io::summarize(mesh));
-  o.common.finish(report);
 }
 
 }  // namespace
@@ -201,7 +199,7 @@ void addTetmeshCommand(CLI::App& app) {
       "  vesalius tetmesh --labels seg.nii.gz --label hip_left --label hip_right --body 1 --out body.vtu\n"
       "  vesalius tetmesh --labels seg.nii.gz --label sacrum --label vertebrae_L5 --shared --out spine.vtu\n"
       "Surfaces must be closed and must not cross (checked first; exit 3 otherwise).");
-  cmd->callback([o] { runTetmesh(*o); });
+  cmd->callback([o] { runCommand("tetmesh", o->common, [&](CommandRun& run) { runTetmesh(*o, run); }); });
 }
 
 }  // namespace vesalius::cli

@@ -3,6 +3,7 @@
 // Laplace interpolation (§7), bone registration (§8), final interpolation; with the anatomical rules
 // measured in the report.
 #include "bone_fat_amounts.h"
+#include "command_runner.h"
 #include "common.h"
 #include "landmark_pairs.h"
 #include "thickness_input.h"
@@ -60,23 +61,25 @@ std::vector<transfer::SkinLandmark> readSkinLandmarks(const TransferOptions& o, 
   return transfer::landmarksAtNearestVertices(skin.V, pairs.first, pairs.second);
 }
 
-void runTransfer(const TransferOptions& o) {
+// The bar's shares of the skin registration and of the transfer after it, as runs on the test CT's torso
+// reference (4 mm voxels, tests/apps/cli_transfer_test.cpp) time them: 3.1 to 4.4 s and 4.8 to 11.9 s.
+const StagePlan kTransferStages{{"register", 3.3}, {"transfer", 6.0}};
+
+void runTransfer(const TransferOptions& o, CommandRun& run) {
   if (fs::weakly_canonical(o.out) == fs::weakly_canonical(o.reference))
     throw UsageError("transfer: --out must not be the reference folder (inputs are never overwritten)");
   if (!o.png.empty() && !viz::canRenderSurfaces()) throw UsageError("transfer: --png needs a display (run under xvfb-run)");
   checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
-  io::Report report("transfer");
-  report.input("reference", o.reference);
-  report.input("target_skin", o.targetSkin);
-  report.parameter("fat", o.fatAmounts.empty() ? o.fat : o.fatAmounts);
-  report.parameter("voxel_size_mm", o.voxelSize);
-  report.parameter("registration_iterations", o.registrationIterations);
-  report.parameter("registration", o.registration);
-  report.parameter("laplace_solver", o.laplaceSolver);
-  Progress progress(o.common.progressStyle());
+  run.report.input("reference", o.reference);
+  run.report.input("target_skin", o.targetSkin);
+  run.report.parameter("fat", o.fatAmounts.empty() ? o.fat : o.fatAmounts);
+  run.report.parameter("voxel_size_mm", o.voxelSize);
+  run.report.parameter("registration_iterations", o.registrationIterations);
+  run.report.parameter("registration", o.registration);
+  run.report.parameter("laplace_solver", o.laplaceSolver);
   auto start = std::chrono::steady_clock::now();
   const auto endStage = [&](const std::string& name) {
-    report.stage(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    run.report.stage(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     start = std::chrono::steady_clock::now();
   };
   const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
@@ -87,13 +90,13 @@ void runTransfer(const TransferOptions& o) {
   std::string fatKind = "bone amounts";
   const Eigen::VectorXd fat = o.fatAmounts.empty()
                                   ? readThickness(o.fat, reference.skin, o.reference + "/" + "skin.obj", fatKind)
-                                  : boneFatAtSkin(reference, o.reference, o.fatAmounts, {}, report);
-  report.parameter("fat_kind", fatKind);
+                                  : boneFatAtSkin(reference, o.reference, o.fatAmounts, {}, run.report);
+  run.report.parameter("fat_kind", fatKind);
 
-  progress.begin("register", "skin registration (ICP with shape matching)");
+  run.progress.begin("register", "skin registration (ICP with shape matching)");
   start = std::chrono::steady_clock::now();
   const transfer::SkinParts parts = transfer::skinPartsFromBones(reference);
-  report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
+  run.report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
   const std::vector<transfer::SkinLandmark> landmarks = readSkinLandmarks(o, reference.skin);
   transfer::ReferenceSkinRegistrationOptions registration;
   registration.registration.registration.iterations = o.registrationIterations;
@@ -101,17 +104,17 @@ void runTransfer(const TransferOptions& o) {
   const transfer::SkinRegistration registered =
       transfer::registerReferenceSkin(reference, parts, target.V, target.F, registration, landmarks);
   endStage("skin registration");
-  progress.end();
-  report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
-  report.metric("registration_max_distance_mm", registered.finalMaxDistance);
+  run.progress.end();
+  run.report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
+  run.report.metric("registration_max_distance_mm", registered.finalMaxDistance);
   if (!landmarks.empty()) {
     double sum = 0;
     for (const transfer::SkinLandmark& l : landmarks) sum += (registered.V.row(l.sourceVertex).transpose() - l.target).norm();
-    report.metric("landmarks", long(landmarks.size()));
-    report.metric("landmark_mean_error_mm", sum / double(landmarks.size()));
+    run.report.metric("landmarks", long(landmarks.size()));
+    run.report.metric("landmark_mean_error_mm", sum / double(landmarks.size()));
   }
 
-  report.metric("registration_scale", registered.alignment.scale);
+  run.report.metric("registration_scale", registered.alignment.scale);
 
   patient::TransferIntoBodyOptions pipeline;
   pipeline.registration.registration.iterations = o.registrationIterations;
@@ -119,25 +122,25 @@ void runTransfer(const TransferOptions& o) {
   pipeline.voxelSizeMm = o.voxelSize;
   pipeline.transfer.field.laplace.solver =
       o.laplaceSolver == "cg" ? transfer::LaplaceSolver::ConjugateGradient : transfer::LaplaceSolver::MultigridCG;
-  const patient::TransferIntoBody into = patient::transferIntoBody(reference, registered.V, fat, parts, pipeline, &progress);
-  for (const auto& [stage, seconds] : into.stageSeconds) report.stage(stage, seconds);
+  const patient::TransferIntoBody into = patient::transferIntoBody(reference, registered.V, fat, parts, pipeline, &run.progress);
+  for (const auto& [stage, seconds] : into.stageSeconds) run.report.stage(stage, seconds);
   if (into.eroded) {
-    report.metric("erosion_mean_mm", into.erosionMeanMm);
-    report.metric("erosion_limited_vertices", into.erosionLimited);
-    report.metric("erosion_new_self_intersections", into.erosionNewSelfIntersections);
-    report.metric("sub_fat_registration_mean_distance_mm", into.subFatMeanDistanceMm);
-    report.metric("sub_fat_registration_scale", into.subFatScale);
+    run.report.metric("erosion_mean_mm", into.erosionMeanMm);
+    run.report.metric("erosion_limited_vertices", into.erosionLimited);
+    run.report.metric("erosion_new_self_intersections", into.erosionNewSelfIntersections);
+    run.report.metric("sub_fat_registration_mean_distance_mm", into.subFatMeanDistanceMm);
+    run.report.metric("sub_fat_registration_scale", into.subFatScale);
   }
   const transfer::TransferredAnatomy& result = into.transferred;
   const GridGeometry& grid = into.grid;
   start = std::chrono::steady_clock::now();
-  report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
+  run.report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
   const auto iterations = [](const transfer::DisplacementField& f) {
     return nlohmann::json{f.solves[0].iterations, f.solves[1].iterations, f.solves[2].iterations};
   };
-  report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
-  report.metric("unfold_passes", result.finalField.unfoldPasses);
-  report.metric("unfold_released_cells", result.finalField.releasedCells);
+  run.report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
+  run.report.metric("unfold_passes", result.finalField.unfoldPasses);
+  run.report.metric("unfold_released_cells", result.finalField.releasedCells);
   // The rules on the body the pipeline made of the registered skin (with its cavities): the eroded one is
   // that unless fat was eroded; a vertex one field voxel inside the reference's skin counts as deep.
   const meshing::BodyDistance body =
@@ -149,17 +152,16 @@ void runTransfer(const TransferOptions& o) {
   rulesOptions.referenceSkinCavities = &into.referenceBody.cavities;
   rulesOptions.deepMm = o.voxelSize;
   const transfer::TransferRules checked = transfer::checkTransferRules(reference, into.anatomy, result, rulesOptions);
-  reportTransferRules(reference, into, checked, body, o.voxelSize, report);
+  reportTransferRules(reference, into, checked, body, o.voxelSize, run.report);
   const transfer::AnatomyRules& rules = checked.rules;
   endStage("checks");
 
-  writeTransferOutputs(reference, into, o.out, o.png, o.common.writeOptions(), report);
+  writeTransferOutputs(reference, into, o.out, o.png, o.common.writeOptions(), run.report);
   endStage("writing");
   std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
             << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
             << result.boneGroups.size() << " bone groups, Jacobian min " << rules.folds.jacobian.minimum << ", "
             << rules.outside.pushedOut << " tissue vertices pushed out of the skin\n";
-  o.common.finish(report);
 }
 
 }  // namespace
@@ -210,7 +212,8 @@ void addTransferCommand(CLI::App& app) {
       "Example:\n  vesalius reference torso --scan ct.nii.gz --labels seg.nii.gz --label-table labels.tsv --out ref\n"
       "  vesalius transfer --reference ref --target-skin body.obj --fat 5 --out target --report transfer.json\n"
       "See docs/methods/anatomy-transfer.md for the steps and the checks in the report.");
-  cmd->callback([o] { runTransfer(*o); });
+  cmd->callback(
+      [o] { runCommand("transfer", o->common, [&](CommandRun& run) { runTransfer(*o, run); }, kTransferStages); });
 }
 
 }  // namespace vesalius::cli

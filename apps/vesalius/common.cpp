@@ -18,10 +18,6 @@
 
 namespace vesalius::cli {
 
-void CommonOptions::finish(const io::Report& report) const {
-  if (!this->report.empty()) report.write(this->report, writeOptions());
-}
-
 namespace {
 
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
-// What every `vesalius` subcommand shares: the common options and how a command's run is wrapped.
+// What every `vesalius` subcommand shares: the common options and their checks, the 3D Slicer module
+// description, error messages and labels chosen by id or name.
 #pragma once
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
-#include "vesalius/io/report.h"
 
 #include <CLI/CLI.hpp>
 
@@ -21,8 +21,6 @@ struct CommonOptions {
 
   WriteOptions writeOptions() const { return WriteOptions{force}; }
   Progress::Style progressStyle() const { return Progress::parseStyle(progress); }
-  // Writes the report if one was asked for.
-  void finish(const io::Report& report) const;
 };
 
 // Adds --progress, --force, --report and --xml to a subcommand; an existing --report without --force is

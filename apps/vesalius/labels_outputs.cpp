@@ -109,7 +109,6 @@ void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const 
   if (before != now) std::cout << "grid: " << before << " -> " << now << " voxels\n";
 
   std::cout << "labels: " << out << "\ntable: " << table << '\n';
-  common.finish(report);
 }
 
 }  // namespace vesalius::cli

@@ -54,8 +54,7 @@ void refuseInputsAsOutputs(const std::string& labels, const std::string& table, 
 
 // Writes `edited` to `out` with its tables beside it (a .seg.nrrd or .dcm carries its own); a .dcm refers
 // to the DICOM series in `dicomSeries`, else to the one a DICOM SEG input refers to (io/dicom_seg.h). Prints each row's voxels and mL in the input
-// and in `edited` and puts them in the report, says when the grid changed, prints the paths written and
-// finishes the report.
+// and in `edited` and puts them in the report, says when the grid changed and prints the paths written.
 void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
                         const std::string& out, const std::string& dicomSeries, const CommonOptions& common,
                         io::Report& report);

@@ -89,7 +89,6 @@ void writeSampledMarkers(const std::string& out, const MatrixX3d& points, const 
   report.metric("scan_edge_area_mm2", edgeArea);
   report.metric("min_spacing_mm", spacing);
   report.metric("ideal_spacing_mm", ideal);
-  common.finish(report);
   std::cout << out << ": " << set.markers.size() << " ICP markers on " << boundary.named
             << ", LPS mm; closest pair " << millimetres(spacing) << " apart, sqrt(area / count) "
             << millimetres(ideal) << "\n";
@@ -125,7 +124,6 @@ void writeSuggestions(const patient::MarkerSuggestions& suggested, const Suggest
   report.metric("suggestions", kept.size());
   report.metric("mean_confidence", confidence / n);
   report.metric("mean_moved_mm", moved / n);
-  common.finish(report);
   std::cout << o.out << ": " << kept.size() << " suggested ICP markers (status preview, LPS mm) from " << edges
             << " of " << found.edges.size() << " candidates with a " << polarityName(found.polarity)
             << " edge; similarity placement RMS " << millimetres(suggested.placement.rmsError)
@@ -137,13 +135,11 @@ void writeSuggestions(const patient::MarkerSuggestions& suggested, const Suggest
 }
 
 void writeConvertedMarkers(const std::string& in, const std::string& out, const MarkerSet& set,
-                           const GridGeometry* geometry, const CommonOptions& common) {
+                           const GridGeometry* geometry, const CommonOptions& common, io::Report& report) {
   io::writeMarkers(out, set, common.writeOptions(), geometry);
-  io::Report report("markers convert");
   report.input("markers", in);
   report.output("markers", out);
   report.metric("markers", set.markers.size());
-  common.finish(report);
   std::size_t unplaced = 0;
   for (const Marker& m : set.markers) unplaced += !hasPosition(m.status);
   std::cout << out << ": " << set.markers.size() << " markers (LPS)";

@@ -40,6 +40,6 @@ void writeSuggestions(const patient::MarkerSuggestions& suggested, const Suggest
 // `convert`: the markers read from `in` written to `out` (geometry: the --scan's, or null), the report,
 // the summary line (how many lack a position) and the fields the output's format does not keep.
 void writeConvertedMarkers(const std::string& in, const std::string& out, const MarkerSet& set,
-                           const GridGeometry* geometry, const CommonOptions& common);
+                           const GridGeometry* geometry, const CommonOptions& common, io::Report& report);
 
 }  // namespace vesalius::cli

@@ -7,6 +7,7 @@
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/mesh.h"
 #include "vesalius/fat/fat_forest.h"
+#include "vesalius/io/report.h"
 
 #include <Eigen/Core>
 
