@@ -254,6 +254,12 @@ TEST(PosedVolume, RigidPartsMoveByTheirOwnMapAndWinOverTheTets) {
   unmapped.parts.values[0] = 2;
   options.rigid = &unmapped;
   EXPECT_THROW(posing::poseImage(bar.mesh.V, bar.mesh.T, posedV, scan, options), BadInput);
+  // No maps: no parts, whatever the grid.
+  const posing::RigidParts none;
+  options.rigid = &none;
+  const LabelMap throughTets = posing::poseLabels(bar.mesh.V, bar.mesh.T, posedV, labels, options);
+  options.rigid = nullptr;
+  EXPECT_TRUE(throughTets.labels.values == posing::poseLabels(bar.mesh.V, bar.mesh.T, posedV, labels, options).labels.values);
 }
 
 TEST(PosedVolume, OverlappingPosedTetsGiveTheSameResultOnAnyThreadCount) {

@@ -37,7 +37,7 @@ void checkInputs(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3d& po
   if (std::int64_t(valueCount) != in.voxelCount())
     throw BadInput("", "posed volume: " + std::to_string(valueCount) + " values for " +
                            std::to_string(in.voxelCount()) + " voxels");
-  if (!rigid) return;
+  if (!rigid || rigid->restFromPosed.empty()) return;
   if (rigid->parts.geometry.size != out.size || std::int64_t(rigid->parts.values.size()) != out.voxelCount())
     throw BadInput("", "posed volume: the rigid parts are not on the output grid");
   const auto highest = std::max_element(rigid->parts.values.begin(), rigid->parts.values.end());
@@ -141,7 +141,7 @@ Grid<Value> rasterize(const MatrixX3d& restV, const MatrixX4i& T, const MatrixX3
   // Each task owns the voxels of one slab, so no two tasks write the same voxel or flag.
   tbb::parallel_for(std::size_t(0), slabs.size(), [&](std::size_t s) {
     const int kFrom = int(s) * kSlab, kTo = std::min(kFrom + kSlab, out.size.z()) - 1;
-    if (rigid) fillRigid(*rigid, inIndex, kFrom, kTo, posed, covered, sample);
+    if (rigid && !rigid->restFromPosed.empty()) fillRigid(*rigid, inIndex, kFrom, kTo, posed, covered, sample);
     for (const int t : slabs[s]) fillTet(restV, T, posedV, t, outIndex, inIndex, kFrom, kTo, posed, covered, sample);
   });
   return posed;

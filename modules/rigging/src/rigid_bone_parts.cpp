@@ -46,8 +46,8 @@ posing::RigidParts rigidBoneParts(const AnatomyRig& rig, const std::vector<TriMe
                            std::to_string(posedMeshes.size()) + " posed meshes for a rig of " +
                            std::to_string(rig.meshes.size()));
   posing::RigidParts rigid;
-  rigid.parts = Grid<Label>(out, 0);
   if (rig.meshJoint.empty()) return rigid;
+  rigid.parts = Grid<Label>(out, 0);
   for (const Eigen::Isometry3d& map : posing::restToPosed(rig.skeleton, world)) rigid.restFromPosed.push_back(map.inverse());
   for (std::size_t m = 0; m < rig.meshes.size(); ++m) {
     const int joint = rig.jointOfMesh(m);

@@ -33,7 +33,8 @@ namespace vesalius::posing {
 // The rigidly moving parts of a posed volume (see above).
 struct RigidParts {
   Grid<Label> parts;  // on the output grid: 0 where no part is, p for part p
-  std::vector<Eigen::Isometry3d> restFromPosed;  // per part p, at p - 1: posed world point -> rest world point
+  std::vector<Eigen::Isometry3d> restFromPosed;  // per part p, at p - 1: posed world point -> rest world point;
+                                                 // empty: no parts (and `parts` may be empty too)
 };
 
 struct PosedVolumeOptions {
