@@ -2,19 +2,19 @@
 // here from MakeHuman's targets at their extremes (heavy and thin, young and old, both sexes), each rigged
 // with the default skeleton and posed through the CMU motion 01_01 with CoR and the defaults (the volume
 // restored, the tets repaired). Coarse for CI: 8 mm voxels, 20,000 tets asked, every 100th frame (28
-// frames); the full-size runs (the default 4 mm and 100,000 tets, every frame) are a benchmark, not a test.
+// frames); the runs at the defaults (4 mm, 100,000 tets, every 25th frame) are tests/bench/bench_rig_bodies.
 // For each body: `rig` exits 0; the tets within 2x of the target, both ways; the skeleton is the body's own
 // (at least as many joints inside its skin as base.obj's); every capsule inside the meshed body
 // (posing/bone_capsules.h: the joint's segment, trimmed at both ends) holds bone vertices; and over the
 // motion no tissue vertex is left outside its tet, no tet inverted or flat, the skin within 3 % (issue 6,
 // docs/methods/posing.md). Printed: tets, the rig's seconds, the worst inverted tets, the skin's volume
 // change and the largest moves of the restoration and of the repair (issue 31 item 4 asks for them small).
+#include "makehuman_bodies.h"
 #include "run_command.h"
 
 #include "vesalius/core/skeleton.h"
 #include "vesalius/core/tet_locator.h"
 #include "vesalius/io/body_axes.h"
-#include "vesalius/io/makehuman_target.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/meshing/winding_number.h"
@@ -35,40 +35,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBody = std::string(VESALIUS_TESTDATA) + "/body/";
 constexpr long kTargetTets = 20000;
 constexpr int kEvery = 100;
-
-struct Body {
-  const char* name;
-  const char* shape;                  // a shipped shape, or nullptr for the neutral body plus `targets`
-  std::vector<const char*> targets;  // testdata/body/targets, each at weight 1
-};
-
-const Body kBodies[] = {
-    {"neutral", "mh_neutral_body.obj", {}},
-    {"male_young_thin", "mh_male_young_thin_body.obj", {}},
-    {"male_young_muscular", "mh_male_young_muscular_body.obj", {}},
-    {"female_young_heavy", nullptr, {"caucasian-female-young", "universal-female-young-maxmuscle-maxweight"}},
-    {"female_young_thin", nullptr, {"caucasian-female-young", "universal-female-young-minmuscle-minweight"}},
-    {"male_old_heavy", nullptr, {"caucasian-male-old", "universal-male-old-maxmuscle-maxweight"}},
-    {"female_old_thin", nullptr, {"caucasian-female-old", "universal-female-old-minmuscle-minweight"}},
-};
 
 std::string folder(const std::string& name) {
   const fs::path d = fs::path(VESALIUS_TEST_OUTPUT) / "rig-bodies" / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d.string();
-}
-
-// The body's skin in MakeHuman's space (as `rig` reads it).
-TriMesh bodySkin(const Body& b) {
-  if (b.shape) return io::readTriMesh(kBody + "shapes/" + b.shape);
-  TriMesh skin = io::readTriMesh(kBody + "shapes/mh_neutral_body.obj");
-  for (const char* t : b.targets)
-    skin = io::applyMakeHumanTarget(skin, io::readMakeHumanTarget(kBody + "targets/" + t + ".target"));
-  return skin;
 }
 
 // The joints of `s` inside `skin` (winding number above 1/2).
@@ -107,40 +81,6 @@ Capsules capsulesInTets(const Skeleton& skeleton, const TetMesh& tets) {
   return c;
 }
 
-struct QualityWorst {
-  int frames = 0;
-  long inverted = 0, leftOutside = 0;
-  double minVolumeRatio = 1, skinPct = 0, untangleMove = 0, restoreMove = 0;  // skinPct: largest |change|, signed
-};
-
-QualityWorst readQuality(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "frame\tmethod\tinverted\tmin_volume_ratio\tskin_volume_change_pct\ttissue_vertices_left_outside"
-                  "\tuntangled_tets\tuntangle_max_move_mm\ttet_volume_change_pct\tskinned_tet_volume_change_pct"
-                  "\trestore_max_move_mm");
-  QualityWorst w;
-  while (std::getline(in, line)) {
-    std::istringstream f(line);
-    int frame;
-    long inverted, outside, untangled;
-    double ratio, skin, untangleMove, tetPct, restoreMove;
-    std::string method, skinnedPct;
-    f >> frame >> method >> inverted >> ratio >> skin >> outside >> untangled >> untangleMove >> tetPct >> skinnedPct >>
-        restoreMove;
-    EXPECT_TRUE(f && method == "cor") << line;
-    ++w.frames;
-    w.inverted = std::max(w.inverted, inverted);
-    w.leftOutside = std::max(w.leftOutside, outside);
-    w.minVolumeRatio = std::min(w.minVolumeRatio, ratio);
-    if (std::abs(skin) > std::abs(w.skinPct)) w.skinPct = skin;
-    w.untangleMove = std::max(w.untangleMove, untangleMove);
-    w.restoreMove = std::max(w.restoreMove, restoreMove);
-  }
-  return w;
-}
-
 class RigBodies : public ::testing::TestWithParam<Body> {};
 
 TEST_P(RigBodies, RigsWithinTheBudgetWithEveryCapsuleHeldAndPosesThroughTheMotion) {
@@ -152,15 +92,15 @@ TEST_P(RigBodies, RigsWithinTheBudgetWithEveryCapsuleHeldAndPosesThroughTheMotio
 
   // The body's own skeleton, as `rig` places it: its joints inside its skin (base.obj's would leave the
   // thin bodies' knees and the heavy bodies' shoulders).
-  const TriMesh base = io::readTriMesh(kBody + "base.obj");
-  const Skeleton own = io::readMakeHumanSkeletonOfBody(kBody + "default.mhskel", base, skin);
+  const TriMesh base = io::readTriMesh(kBodyData + "base.obj");
+  const Skeleton own = io::readMakeHumanSkeletonOfBody(kBodyData + "default.mhskel", base, skin);
   const long ownInside = jointsInside(own, skin);
-  const long baseInside = jointsInside(io::readMakeHumanSkeleton(kBody + "default.mhskel", base.V), skin);
+  const long baseInside = jointsInside(io::readMakeHumanSkeleton(kBodyData + "default.mhskel", base.V), skin);
   EXPECT_GE(ownInside, baseInside);
 
   const auto start = std::chrono::steady_clock::now();
-  const CommandResult r = runVesalius({"rig", "--skin", skinFile, "--skeleton", kBody + "default.mhskel", "--base-mesh",
-                                       kBody + "base.obj", "--voxel-size", "8", "--target-tets",
+  const CommandResult r = runVesalius({"rig", "--skin", skinFile, "--skeleton", kBodyData + "default.mhskel", "--base-mesh",
+                                       kBodyData + "base.obj", "--voxel-size", "8", "--target-tets",
                                        std::to_string(kTargetTets), "--out", dir + "/rig", "--report",
                                        dir + "/rig.json", "--progress", "none"});
   const double rigSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -188,7 +128,8 @@ TEST_P(RigBodies, RigsWithinTheBudgetWithEveryCapsuleHeldAndPosesThroughTheMotio
                                        "--every", std::to_string(kEvery), "--quality-only", "--method", "cor", "--out",
                                        dir + "/pose", "--progress", "none"});
   ASSERT_EQ(p.exitCode, 0) << p.err;
-  const QualityWorst w = readQuality(dir + "/pose/quality.tsv");
+  const QualityWorst w = readQualityTable(dir + "/pose/quality.tsv");
+  ASSERT_TRUE(w.read && w.method == "cor") << dir << "/pose/quality.tsv";
   std::printf("%s: %ld tets (%ld asked), rig %.1f s; joints inside the skin %ld (base.obj's %ld); %zu capsules in "
               "the tets, %zu bones; over %d frames: %ld inverted tets at worst, smallest volume ratio %.3f, skin "
               "%+.2f %%, %ld tissue vertices outside; moved up to %.1f mm by the restoration, %.1f mm by the "

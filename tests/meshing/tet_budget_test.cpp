@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -46,6 +47,35 @@ TEST(TetBudget, TargetHeldOnSurfacesOfAnyDensity) {
   }
   options.targetTets = 0;
   EXPECT_THROW(meshing::tetrahedralizeWithinBudget(ellipsoid(2), options), UsageError);
+}
+
+// A surface too coarse to decimate further and a target below what its triangles allow: TetGen's
+// refinement splits the surface triangles it encroaches on. The surface kept as given (-Y) is then taken
+// where it gives fewer tets: never more tets than the plain run, the volume kept, none inverted.
+TEST(TetBudget, ASurfaceDecimationCannotTakeIsKeptWhenThatGivesFewerTets) {
+  for (int levels = 1; levels <= 2; ++levels) {  // at most 200 triangles: nothing to decimate
+    const TriMesh surface = ellipsoid(levels);
+    TetrahedralizeOptions options;
+    options.targetTets = surface.F.rows() / 8;
+    options.keepSurfaceOverBudget = true;
+    const meshing::BudgetedTets result = meshing::tetrahedralizeWithinBudget(surface, options, "ellipsoid");
+    const TetMesh plain = meshing::tetrahedralize(surface, options, "ellipsoid");
+    TetrahedralizeOptions keep = options;
+    keep.keepSurface = true;
+    options.keepSurfaceOverBudget = false;
+    EXPECT_FALSE(meshing::tetrahedralizeWithinBudget(surface, options, "ellipsoid").surfaceKept);  // only when asked
+    const TetMesh kept = meshing::tetrahedralize(surface, keep, "ellipsoid");
+    const double volume = tetVolumes(result.tets.V, result.tets.T).sum(), exact = enclosedVolume(surface.V, surface.F);
+    std::cout << surface.F.rows() << " triangles, " << options.targetTets << " tets asked: " << result.tets.T.rows()
+              << " tets (surface kept: " << result.surfaceKept << "; TetGen refining the surface: " << plain.T.rows()
+              << ", keeping it: " << kept.T.rows() << "), volume " << volume / exact << " of the surface's\n";
+    EXPECT_EQ(result.surfaceFaces, surface.F.rows());
+    ASSERT_GT(plain.T.rows(), 2 * options.targetTets);  // over the budget: the case this test is about
+    EXPECT_EQ(result.tets.T.rows(), std::min(plain.T.rows(), kept.T.rows()));
+    EXPECT_EQ(result.surfaceKept, kept.T.rows() < plain.T.rows());
+    EXPECT_NEAR(volume / exact, 1.0, 1e-9);
+    EXPECT_EQ(tetQualityReport(result.tets.V, result.tets.T).inverted, 0);
+  }
 }
 
 // A radius-edge bound TetGen may never meet, and a volume bound needing more tets than the budget, are

@@ -50,6 +50,7 @@ TetMesh bodyTets(const TriMesh& skin, const RigOptions& o, const std::string& so
   const segmentation::Mask inside = skinInsideMask(skin, bodyGrid(skin, o), source);
   meshing::TetrahedralizeOptions tet;
   tet.targetTets = o.targetTets;
+  tet.keepSurfaceOverBudget = true;
   // The voxel surface has about a triangle per boundary voxel face, which TetGen keeps and refines around
   // (900k tets for a target of 30k at 8 mm voxels; 129k for 20k with a quarter of the target in faces):
   // decimated to the faces the target allows, and coarsened again while the tets are more than twice it.

@@ -48,6 +48,8 @@ struct TetrahedralizeOptions {
   double maxVolume = 0.0;     // TetGen -a: largest tet volume in mm^3; 0 for no bound
   long targetTets = 0;        // aim for about this many tets (±15%) by choosing maxVolume; 0 to use maxVolume
   bool keepSurface = false;   // TetGen -Y: no Steiner points on the surfaces (their triangles stay as given)
+  // tetrahedralizeWithinBudget (tet_budget.h) only: -Y where coarsening alone leaves more than twice the target.
+  bool keepSurfaceOverBudget = false;
   int optimizationLevel = 4;  // TetGen -O: rounds of flips and smoothing (0..9)
   double maxDihedral = 130.0;  // TetGen -o/: optimization removes dihedral angles above this, degrees
   long maxTets = 5'000'000;    // the budget above: no mesh of more tets is attempted
