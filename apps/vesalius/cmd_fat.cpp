@@ -1,4 +1,4 @@
-// vesalius fat: subcutaneous fat thickness from segmented skin and fat (seed 000 §5).
+// vesalius fat: subcutaneous fat thickness from segmented skin and fat (Dicko et al. 2013, §5).
 //   forest   the forest of shortest paths from the skin through the fat: a thickness image (mm on skin
 //            voxels) and, given a skin surface, the thickness at its vertices as a point attribute.
 //   erode    the skin surface moved inward by the thickness, along the forest's paths where given.
@@ -46,7 +46,7 @@ void runForest(const ForestOptions& o, CommandRun& run) {
 void addForestCommand(CLI::App& fatCommand) {
   auto o = std::make_shared<ForestOptions>();
   CLI::App* cmd = fatCommand.add_subcommand(
-      "forest", "Fat thickness under the skin by a forest of shortest paths from skin voxels through fat (seed 000 §5)");
+      "forest", "Fat thickness under the skin by a forest of shortest paths from skin voxels through fat (Dicko et al. 2013, §5)");
   addForestSourceOptions(*cmd, o->source, true);
   cmd->add_option("--out", o->out, "Thickness image: float mm on skin voxels, 0 elsewhere (.nii.gz, .nrrd, .mha)")
       ->required();
@@ -104,7 +104,7 @@ void runErode(const ErodeOptions& o, CommandRun& run) {
 void addErodeCommand(CLI::App& fatCommand) {
   auto o = std::make_shared<ErodeOptions>();
   CLI::App* cmd = fatCommand.add_subcommand(
-      "erode", "Move a skin surface inward by the fat thickness, along the forest's paths (seed 000 §5, Fig. 2.b)");
+      "erode", "Move a skin surface inward by the fat thickness, along the forest's paths (Dicko et al. 2013, §5, Fig. 2.b)");
   cmd->add_option("--skin", o->skin, "Skin (body) surface mesh, closed, LPS mm")->required();
   cmd->add_option("--thickness", o->thickness,
                   "Fat thickness: a number (mm), a texture image read at the skin's uv (from 'fat texture'), a mesh "
@@ -167,7 +167,7 @@ void runTexture(const TextureOptions& o, CommandRun& run) {
 void addTextureCommand(CLI::App& fatCommand) {
   auto o = std::make_shared<TextureOptions>();
   CLI::App* cmd = fatCommand.add_subcommand(
-      "texture", "Rasterize the fat thickness at a skin's vertices into its uv texture (seed 000 §5)");
+      "texture", "Rasterize the fat thickness at a skin's vertices into its uv texture (Dicko et al. 2013, §5)");
   cmd->add_option("--skin", o->skin, "Skin surface mesh with texture coordinates (.obj, .vtp, .ply), LPS mm")
       ->required();
   cmd->add_option("--thickness", o->thickness,
@@ -221,7 +221,7 @@ void runEdit(const EditOptions& o, CommandRun& run) {
 void addEditCommand(CLI::App& fatCommand) {
   auto o = std::make_shared<EditOptions>();
   CLI::App* cmd = fatCommand.add_subcommand(
-      "edit", "Fat editor: per-bone fat amounts over bounded biharmonic weights of a reference's bones (seed 000 §6)");
+      "edit", "Fat editor: per-bone fat amounts over bounded biharmonic weights of a reference's bones (Dicko et al. 2013, §6)");
   cmd->add_option("--reference", o->reference, "Reference anatomy folder (from `vesalius reference`)")->required();
   cmd->add_option("--amounts", o->amounts,
                   "JSON object of bone (group) names and fat amounts, e.g. {\"pelvis\": 0.4, \"torso\": 0}; an amount "
@@ -251,7 +251,7 @@ void addEditCommand(CLI::App& fatCommand) {
 
 void addFatCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
-      "fat", "Subcutaneous fat: thickness from segmented skin and fat, erosion, texture (seed 000 §5), editor (§6)");
+      "fat", "Subcutaneous fat: thickness from segmented skin and fat, erosion, texture (Dicko et al. 2013, §5), editor (§6)");
   cmd->require_subcommand(1);
   addForestCommand(*cmd);
   addErodeCommand(*cmd);

@@ -1,5 +1,5 @@
 // vesalius fit: a template organ fitted to markers picked on a scan by plastic strains (fit/template_fit.h,
-// seed 002). Reads the template, markers, bone and embedded surface, runs the fit, writes the fitted tets and
+// Wang et al. 2021). Reads the template, markers, bone and embedded surface, runs the fit, writes the fitted tets and
 // surfaces, the report (per-marker errors and their histogram, Fig. 16; the objective per iteration, Fig. 9;
 // the minimum dihedral angles before and after, Fig. 17) and a picture: the fitted surface's contour over
 // the scan's slices (Fig. 18) beside the error histogram.
@@ -144,7 +144,7 @@ void runFit(FitCommandOptions o, CommandRun& run) {
 void addFitCommand(CLI::App& app) {
   auto o = std::make_shared<FitCommandOptions>();
   CLI::App* cmd =
-      app.add_subcommand("fit", "Fit a template organ to markers picked on a scan (plastic strains, seed 002)");
+      app.add_subcommand("fit", "Fit a template organ to markers picked on a scan (plastic strains, Wang et al. 2021)");
   cmd->add_option("--template", o->templ,
                   "Template: tet mesh (.vtu .vtk .msh .mesh .ele) or surface (.stl .obj .ply .vtp; one that is "
                   "open, non-manifold or self-crossing is closed by its winding number first), in its own "
@@ -163,7 +163,7 @@ void addFitCommand(CLI::App& app) {
                   "Bone vertices within this distance (mm) of the placed template are attached");
   cmd->add_option("--attachments", o->attachments,
                   "Attachment markers: position = bone point, template position = organ point");
-  cmd->add_flag("--unattached", o->unattached, "The organ is free (a liver, a bone): no attachments (seed 002 §3.6)");
+  cmd->add_flag("--unattached", o->unattached, "The organ is free (a liver, a bone): no attachments (Wang et al. 2021, §3.6)");
   cmd->add_option("--out", o->out,
                   "Fitted tet mesh (.vtu ...): the template's tets and fields, plus "
                   "plastic_stretch_min and plastic_stretch_max per tet")->required();
@@ -175,7 +175,7 @@ void addFitCommand(CLI::App& app) {
                   "Picture: the contour over three slices through the markers, and the error histogram");
   cmd->add_option("--window", o->window, "Grey window of the picture, scan units")->capture_default_str();
   cmd->add_option("--level", o->level, "Grey level of the picture, scan units")->capture_default_str();
-  cmd->add_option("--method", o->method, "plastic (seed 002) or elastic (the FEM baseline of its Fig. 2)")
+  cmd->add_option("--method", o->method, "plastic (Wang et al. 2021) or elastic (the FEM baseline of its Fig. 2)")
       ->check(CLI::IsMember({"plastic", "elastic"}))->capture_default_str();
   cmd->add_option("--init", o->init,
                   "similarity: placed from landmark pairs (3 or more) or by ICP to the markers; "
@@ -192,10 +192,10 @@ void addFitCommand(CLI::App& app) {
                   "The ICP stage stops when two iterations lower the mean ICP error by less than this (mm; 0: off)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--marker-weight", o->fit.solver.markerWeight,
-                  "alpha of seed 002 eq. 3 per mm^2: higher meets the markers more closely, lower keeps Fp smoother")
+                  "alpha of Wang et al.'s eq. 3 per mm^2: higher meets the markers more closely, lower keeps Fp smoother")
       ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--attachment-weight", o->fit.solver.attachmentWeight,
-                  "beta of seed 002 eq. 3 per mm^2: how much the attachments' elastic work counts")
+                  "beta of Wang et al.'s eq. 3 per mm^2: how much the attachments' elastic work counts")
       ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--target-tets", o->fit.tets.targetTets,
                   "About this many tets for a surface template (within twice it: a surface finer than that allows "

@@ -1,5 +1,5 @@
 // vesalius markers: marker files. `sample` spreads ICP markers evenly over a label's boundary (stand-ins for
-// a radiologist's picks, seed 002 §3.1, §4.1.1); `suggest` proposes ICP markers where a scan has an edge
+// a radiologist's picks, Wang et al. 2021, §3.1, §4.1.1); `suggest` proposes ICP markers where a scan has an edge
 // near a roughly placed template (issue 5; docs/methods/marker-suggestions.md); `convert` moves markers
 // between 3D Slicer (.mrk.json, .fcsv), plain CSV and ITK-SNAP (.annot) files.
 #include "command_runner.h"

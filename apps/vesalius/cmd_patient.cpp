@@ -149,7 +149,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
       std::cout << "  " << b.tissue << ": the reference's bone on label " << b.label << ", its boundary "
                 << b.registration.boundaryToMeshMeanMm << " mm from the bone on average\n";
     const transfer::AnatomyRules& r = *p.rules;
-    std::cout << "  seed 000's rules " << (r.holds() ? "hold" : "do not all hold") << ": " << r.outside.outside
+    std::cout << "  Dicko et al.'s rules " << (r.holds() ? "hold" : "do not all hold") << ": " << r.outside.outside
               << " tissue vertices outside the skin (" << r.outside.outsideAtCut << " through the scan's cut), "
               << r.folds.jacobian.nonPositiveCells << " folded cells, deepest interpenetration beyond the reference's "
               << r.interpenetration.worstExcessMm << " mm (report.json anatomy_rules)\n";

@@ -1,5 +1,5 @@
 // vesalius pose: an anatomy directory (`vesalius rig`) put into the poses of a motion or of joint angles
-// (seed 001 §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders,
+// (Sujar et al. 2018, §3.4-3.5, §5): posed meshes, the posed tet mesh and skeleton, optionally posed volumes and renders,
 // and the quality of every pose (issue 6): inverted tets, posed/rest tet volumes, the skin's volume change and
 // the tissue vertices that leave their tet. The skinned tets first get their rest volumes back
 // (posing/volume_restoration.h) unless --no-restore-volume, then the tets skinning inverts or flattens are
@@ -165,7 +165,7 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--png-dir", o->pngDir, "Write a render of each pose here (needs a display)");
   cmd->add_flag("--no-restore-volume", o->noRestore,
                 "Keep the volume skinning loses or gains: no smooth displacement giving the tets their rest volumes "
-                "back (the seed's bare skinning, with --no-untangle)");
+                "back (the paper's bare skinning, with --no-untangle)");
   cmd->add_flag("--no-untangle", o->noUntangle,
                 "Keep the skinned tets as they are: no repair of the tets skinning inverts or flattens");
   cmd->add_flag("--quality-only", o->qualityOnly, "Write only quality.tsv (inverted tets, volume changes), no poses");

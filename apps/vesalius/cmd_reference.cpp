@@ -1,4 +1,4 @@
-// vesalius reference torso: a reference anatomy for anatomy transfer (seed 000 §3, Fig. 2.c) built from a
+// vesalius reference torso: a reference anatomy for anatomy transfer (Dicko et al. 2013, §3, Fig. 2.c) built from a
 // labelled CT: the body's surface as the skin, every label of the segmentation as a bone, muscle or organ.
 // vesalius reference full-body: MakeHuman's skin with an OpenSim model's bones placed inside it
 // (patient/full_body_reference.h). vesalius reference organs: a labelled CT's organs and muscles carried
@@ -74,7 +74,7 @@ void runReference(const ReferenceOptions& o, CommandRun& run) {
             << " tissues (" << bones << " bones), sagittal normal " << anatomy.sagittal.normal.transpose() << "\n";
 }
 
-// The full-body reference (seed 000 §3; patient/full_body_reference.h): the files read, the reference
+// The full-body reference (Dicko et al. 2013, §3; patient/full_body_reference.h): the files read, the reference
 // built, its bones' moves inside the skin reported.
 void runFullBody(const FullBodyOptions& o, CommandRun& run) {
   checkOutputFolder(o.out, o.common.writeOptions());  // before the work; written whole at the end
@@ -194,7 +194,7 @@ void addReferenceCommand(CLI::App& app) {
   full->footer(
       "Examples:\n  vesalius reference full-body --out body-reference       # the shipped body and model\n"
       "  vesalius reference full-body --skin my_makehuman_body.obj --out my-reference\n"
-      "The skeleton is placed by seed 004's body frame and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
+      "The skeleton is placed by the body frame of the GRAPP 2012 skeleton-alignment paper and per-bone similarity fits; see docs/methods/skeleton-alignment.md.");
   full->callback([f] { runCommand("reference full-body", f->common, [&](CommandRun& run) { runFullBody(*f, run); }); });
 
   auto g = std::make_shared<OrgansOptions>();

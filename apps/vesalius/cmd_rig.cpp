@@ -1,4 +1,4 @@
-// vesalius rig: the posing rig of a body (seed 001 §3.1-3.5 preprocessing) from a skin and a skeleton, from
+// vesalius rig: the posing rig of a body (Sujar et al. 2018, §3.1-3.5 preprocessing) from a skin and a skeleton, from
 // a label map with segmented bones, or from a reference anatomy with OpenSim's bone meshes placed in its
 // skin (rigging/body_rig.h), written as a rig folder with the meshes it will carry (io/anatomy_rig_io.h).
 #include "command_runner.h"
@@ -174,7 +174,7 @@ void addRigCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--voxel-size", o->rig.voxelSize, "Voxel size of the inside image (--skin, --reference) or of the labels meshed (--labels; coarser only), mm (grown to keep it under "
-                                               "250x120x700 voxels, seed 001 §3.2)")
+                                               "250x120x700 voxels, Sujar et al. 2018, §3.2)")
       ->capture_default_str();
   cmd->add_option("--target-tets", o->rig.targetTets, "About this many tets")->capture_default_str();
   cmd->add_option("--capsule-radius", o->rig.capsules.radiusFraction,
@@ -197,7 +197,7 @@ void addRigCommand(CLI::App& app) {
       "  vesalius rig --labels seg.nii.gz --label-table labels_total_v1.tsv --target-tets 20000 --out ct-rig\n"
       "From the full-body reference (OpenSim's bones in MakeHuman's skin; joints pelvis, femur_l, tibia_l, talus_l, ...):\n"
       "  vesalius rig --reference body-reference --voxel-size 6 --target-tets 20000 --out body-bones-rig\n"
-      "(about 25 s and 23k tets; at the defaults about 130k tets, 70 s)");
+      "(coarser voxels and fewer tets rig faster; the defaults make about 100k tets)");
   cmd->callback([o] { runCommand("rig", o->common, [&](CommandRun& run) { runRig(*o, run); }); });
 }
 

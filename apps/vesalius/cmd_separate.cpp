@@ -1,4 +1,4 @@
-// vesalius separate: fitted organs that touch pushed apart where they overlap (seed 002 §4.1.4), each
+// vesalius separate: fitted organs that touch pushed apart where they overlap (Wang et al. 2021, §4.1.4), each
 // mesh moved only in a contact region around its penetrating vertices (fit/interpenetration.h).
 #include "command_runner.h"
 #include "common.h"
@@ -94,13 +94,13 @@ void runSeparate(const SeparateOptions& o, CommandRun& run) {
 void addSeparateCommand(CLI::App& app) {
   auto o = std::make_shared<SeparateOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "separate", "Push fitted organs that overlap apart, moving each only near the contact (seed 002 §4.1.4)");
+      "separate", "Push fitted organs that overlap apart, moving each only near the contact (Wang et al. 2021, §4.1.4)");
   cmd->add_option("--mesh", o->meshes,
                   "A fitted tet mesh (.vtu .vtk .msh), world mm; repeat, in fitting order: each is pushed out of "
                   "the ones before it")
       ->required();
   cmd->add_option("--out", o->out, "Folder for the separated meshes (same file names as the inputs)")->required();
-  cmd->add_option("--rings", o->solver.rings, "Rings of tets grown around the penetrating ones (the seed's 5)")
+  cmd->add_option("--rings", o->solver.rings, "Rings of tets grown around the penetrating ones (the paper's 5)")
       ->check(CLI::Range(0, 50))
       ->capture_default_str();
   cmd->add_option("--clearance", o->solver.clearance, "How far beyond the other surface a pushed vertex aims, mm")

@@ -51,7 +51,7 @@ std::vector<meshing::LabelSurface> sharedSurfaces(const LabelMap& map, const std
 }
 
 // --touching: each chosen label's interface with the other label, from the shared surfaces of them all (a
-// muscle's insertion on a bone, seed 002 §4.1.2). A chosen label that does not touch it is refused.
+// muscle's insertion on a bone, Wang et al. 2021, §4.1.2). A chosen label that does not touch it is refused.
 std::vector<meshing::LabelSurface> interfaceSurfaces(const LabelMap& map, std::vector<Label> ids,
                                                      const SurfaceOptions& o, io::Report& report, Progress& progress) {
   const Label other = resolveLabel(map, o.touching, o.labels);

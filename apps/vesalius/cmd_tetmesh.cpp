@@ -46,7 +46,7 @@ std::vector<meshing::RegionSurface> readSurfaces(const TetmeshOptions& o) {
   return regions;
 }
 
-// Seed 001 §3.2 keeps the image it meshes under 250x700x120 voxels by its choice of voxel size; larger
+// Sujar et al. 2018, §3.2 keeps the image it meshes under 250x700x120 voxels by its choice of voxel size; larger
 // maps are resampled (nearest neighbour) onto such a grid.
 LabelMap cappedLabels(LabelMap map) {
   const GridGeometry capped =

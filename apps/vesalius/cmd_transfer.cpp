@@ -1,4 +1,4 @@
-// vesalius transfer: a reference anatomy carried into a target body surface (seed 000): skin registration
+// vesalius transfer: a reference anatomy carried into a target body surface (Dicko et al. 2013): skin registration
 // (§4), erosion by the fat thickness (§5) and registration of the lean reference onto the eroded skin,
 // Laplace interpolation (§7), bone registration (§8), final interpolation; with the anatomical rules
 // measured in the report.
@@ -168,7 +168,7 @@ void runTransfer(const TransferOptions& o, CommandRun& run) {
 
 void addTransferCommand(CLI::App& app) {
   auto o = std::make_shared<TransferOptions>();
-  CLI::App* cmd = app.add_subcommand("transfer", "Carry a reference anatomy into a target body surface (seed 000)");
+  CLI::App* cmd = app.add_subcommand("transfer", "Carry a reference anatomy into a target body surface (Dicko et al. 2013)");
   cmd->add_option("--reference", o->reference, "Reference anatomy folder (from `vesalius reference`)")->required();
   cmd->add_option("--target-skin", o->targetSkin, "Closed body surface of the target (.obj .stl .vtp .ply .vtk)")->required();
   cmd->add_option("--space", o->space, "Space of the target skin: lps (mm) or makehuman (decimetres, +Y up)")
@@ -179,13 +179,13 @@ void addTransferCommand(CLI::App& app) {
                   "reference skin vertex")
       ->capture_default_str();
   cmd->add_option("--fat-amounts", o->fatAmounts,
-                  "Fat from per-bone amounts instead (seed 000 §6): a JSON object as `fat edit --amounts` takes it, "
+                  "Fat from per-bone amounts instead (Dicko et al. 2013, §6): a JSON object as `fat edit --amounts` takes it, "
                   "with that command's defaults")
       ->excludes(fatOption);
   cmd->add_option("--voxel-size", o->voxelSize, "Voxel size of the displacement field's grid, mm")->capture_default_str();
   cmd->add_option("--laplace-solver", o->laplaceSolver,
                   "Solver of the two Laplace fields: mg (multigrid-preconditioned CG) or cg (Jacobi-preconditioned "
-                  "CG, the seed's baseline, for benchmarks); both stop at the same relative residual")
+                  "CG, the paper's baseline, for benchmarks); both stop at the same relative residual")
       ->check(CLI::IsMember({"mg", "cg"}))
       ->capture_default_str();
   cmd->add_option("--registration-iterations", o->registrationIterations, "ICP iterations of the skin registration")
@@ -193,14 +193,14 @@ void addTransferCommand(CLI::App& app) {
   CLI::Option* referenceLandmarks =
       cmd->add_option("--reference-landmarks", o->referenceLandmarks,
                       "Landmarks on the reference skin (markups, LPS mm), paired by label with --target-landmarks: "
-                      "they start the skin registration where the bodies are far apart or turned (seed 000 §4)");
+                      "they start the skin registration where the bodies are far apart or turned (Dicko et al. 2013, §4)");
   CLI::Option* targetLandmarks = cmd->add_option(
       "--target-landmarks", o->targetLandmarks, "Their partners on the target skin (markups, LPS mm, as the target is after --space)");
   referenceLandmarks->needs(targetLandmarks);
   targetLandmarks->needs(referenceLandmarks);
   cmd->add_option("--registration", o->registration,
                   "Skin registration: articulated (the reference skin cut into parts by its bones, limbs turned about "
-                  "their joints before ICP with shape matching) or plain (ICP with shape matching alone, seed 000 §4)")
+                  "their joints before ICP with shape matching) or plain (ICP with shape matching alone, Dicko et al. 2013, §4)")
       ->check(CLI::IsMember({"articulated", "plain"}))
       ->capture_default_str();
   cmd->add_option("--png", o->png,

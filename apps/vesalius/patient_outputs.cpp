@@ -140,7 +140,7 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                                {"bones_on_labels", bones}});
 }
 
-// Seed 000's rules on the whole model, in brief: whether each holds and its worst value and tissue.
+// Dicko et al.'s rules on the whole model, in brief: whether each holds and its worst value and tissue.
 nlohmann::json rulesReport(const transfer::AnatomyRules& r, const ReferenceAnatomy& model) {
   const auto name = [&](int t) { return t >= 0 ? model.tissues[std::size_t(t)].name : std::string(); };
   nlohmann::json pairs = nlohmann::json::array();

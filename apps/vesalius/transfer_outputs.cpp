@@ -124,7 +124,7 @@ void writeTransferOutputs(const ReferenceAnatomy& reference, const patient::Tran
   TriMesh eroded = reference.skin;
   eroded.V = into.erodedSkin;
   const ReferenceAnatomy& out = into.anatomy;
-  // The sub-fat surface (the seed's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
+  // The sub-fat surface (the paper's Fig. 2.b) goes beside the anatomy: to look at, not part of it.
   io::writeReferenceAnatomy(outDir, out, write, {{"eroded_skin.obj", eroded}});
   report.output("anatomy", outDir);
   report.output("eroded_skin", (fs::path(outDir) / "eroded_skin.obj").string());
