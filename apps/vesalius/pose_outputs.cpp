@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -37,23 +38,28 @@ void writePose(const AnatomyRig& rig, const std::vector<TriMesh>& meshes, const 
     out[m].V = carried[m];
     io::writeTriMesh(dir + "/" + fs::path(rig.meshes[m]).filename().string(), out[m], write);
   }
-  // The volumes keep their grids; their voxels inside a bone mesh move with it rigidly.
+  // The volumes keep their grids; their voxels inside a bone mesh move with it rigidly. A scan and its
+  // label map mostly share a grid: the bones are then voxelized once for both.
+  std::optional<posing::RigidParts> bones;
+  std::optional<GridGeometry> bonesGrid;
   const auto onGrid = [&](const GridGeometry& grid) {
-    return rigging::rigidBoneParts(rig, meshes, carried, world, grid, grid);
+    posing::PosedVolumeOptions options;
+    const bool same = bonesGrid && bonesGrid->size == grid.size && bonesGrid->origin == grid.origin &&
+                      bonesGrid->spacing == grid.spacing && bonesGrid->direction == grid.direction;
+    if (!same) {
+      bones = rigging::rigidBoneParts(rig, meshes, carried, world, grid, grid);
+      bonesGrid = grid;
+    }
+    options.rigid = &*bones;
+    return options;
   };
-  if (volumes.scan) {
-    const posing::RigidParts bones = onGrid(volumes.scan->geometry);
-    posing::PosedVolumeOptions options;
-    options.rigid = &bones;
-    io::writeScan(dir + "/" + volumes.scanName, posing::poseImage(rig.tets.V, rig.tets.T, posedTets, *volumes.scan, options));
-  }
-  if (volumes.labels) {
-    const posing::RigidParts bones = onGrid(volumes.labels->labels.geometry);
-    posing::PosedVolumeOptions options;
-    options.rigid = &bones;
+  if (volumes.scan)
+    io::writeScan(dir + "/" + volumes.scanName,
+                  posing::poseImage(rig.tets.V, rig.tets.T, posedTets, *volumes.scan, onGrid(volumes.scan->geometry)));
+  if (volumes.labels)
     io::writeLabelMap(dir + "/" + volumes.labelsName,
-                      posing::poseLabels(rig.tets.V, rig.tets.T, posedTets, *volumes.labels, options));
-  }
+                      posing::poseLabels(rig.tets.V, rig.tets.T, posedTets, *volumes.labels,
+                                         onGrid(volumes.labels->labels.geometry)));
   if (!png.empty()) {
     // The skin translucent over the other meshes, as the viewer of the issue shows them.
     std::vector<viz::SurfaceLayer> layers;
