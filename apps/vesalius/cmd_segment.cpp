@@ -3,6 +3,7 @@
 #include "common.h"
 
 #include "vesalius/core/atomic_file.h"
+#include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/ct_tissues.h"
@@ -56,9 +57,10 @@ void runSegment(const SegmentOptions& o, CommandRun& run) {
     auto timer = run.report.time("read scan");
     scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
   }
-  // A DICOM SEG refers to the series it was made from, when the scan is one.
+  // A DICOM SEG or RT Structure Set refers to the series it was made from, when the scan is one.
+  const bool rtStruct = io::isDicomRtStructPath(o.out);
   const std::optional<io::DicomSourceSeries> source =
-      io::isDicomSegPath(o.out) ? io::readDicomSource(o.scan, o.series) : std::nullopt;
+      io::isDicomSegPath(o.out) || rtStruct ? io::readDicomSource(o.scan, o.series) : std::nullopt;
   LabelMap labels;
   {
     auto timer = run.report.time("segment");
@@ -68,7 +70,8 @@ void runSegment(const SegmentOptions& o, CommandRun& run) {
   std::vector<std::string> outputs = io::labelMapFiles(o.out);
   outputs.push_back(png);
   writeFilesAtomically(outputs, o.common.writeOptions(), [&](const std::vector<std::string>& files) {
-    if (source) io::writeDicomSeg(files.front(), labels, &*source);
+    if (source && rtStruct) io::writeDicomRtStruct(files.front(), labels, &*source);
+    else if (source) io::writeDicomSeg(files.front(), labels, &*source);
     else io::writeLabelMap(files.front(), labels);
     viz::writeSliceOverlayPng(scan, labels, files.back());
   });
@@ -93,8 +96,9 @@ void addSegmentCommand(CLI::App& app) {
   slicerParameter(cmd->add_option("--out", o->out,
                                   "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for "
                                   "Vesalius (.tsv), 3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer "
-                                  "segmentation (.seg.nrrd); or a DICOM segmentation for PACS (.dcm), which refers "
-                                  "to the scan's series when the scan is DICOM")
+                                  "segmentation (.seg.nrrd); or a DICOM segmentation for PACS (.dcm) or an RT Structure "
+                                  "Set for radiotherapy planning (.rtstruct.dcm), which refer to the scan's series "
+                                  "when the scan is DICOM")
                       ->required(),
                   SlicerKind::LabelImage, true, ".nrrd,.nii.gz,.mha");
   cmd->add_option("--png", o->png, "Picture of the labels over three slices (default: beside the label map)");

@@ -1,5 +1,6 @@
 #include "labels_outputs.h"
 
+#include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 
@@ -68,17 +69,20 @@ void refuseInputsAsOutputs(const std::string& labels, const std::string& table, 
 }
 
 void checkDicomSeriesOption(const std::string& dicomSeries, const std::string& out) {
-  if (!dicomSeries.empty() && !io::isDicomSegPath(out))
-    throw UsageError("--dicom-series names the series a DICOM segmentation refers to; give an --out ending .dcm");
+  if (!dicomSeries.empty() && !io::isDicomSegPath(out) && !io::isDicomRtStructPath(out))
+    throw UsageError("--dicom-series names the series a DICOM segmentation or RT Structure Set refers to; give an "
+                     "--out ending .dcm");
 }
 
 void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
                         const std::string& out, const std::string& dicomSeries, const CommonOptions& common,
                         io::Report& report) {
-  if (io::isDicomSegPath(out)) {
+  const bool rtStruct = io::isDicomRtStructPath(out);
+  if (io::isDicomSegPath(out) || rtStruct) {
     const std::optional<io::DicomSourceSeries> source =
         io::readDicomSource(dicomSeries.empty() ? input.path : dicomSeries);
-    io::writeDicomSeg(out, edited, source ? &*source : nullptr, common.writeOptions());
+    if (rtStruct) io::writeDicomRtStruct(out, edited, source ? &*source : nullptr, common.writeOptions());
+    else io::writeDicomSeg(out, edited, source ? &*source : nullptr, common.writeOptions());
     if (source) report.input("dicom_series", dicomSeries.empty() ? input.path : dicomSeries);
   } else {
     io::writeLabelMap(out, edited, common.writeOptions());

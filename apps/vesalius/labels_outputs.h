@@ -40,20 +40,23 @@ struct SummaryRow {
 
 constexpr const char* kOutHelp =
     "Label map to write (.nii.gz, .nrrd, .mha) with label tables beside it; or a 3D Slicer segmentation "
-    "(.seg.nrrd); or a DICOM segmentation for PACS (.dcm)";
+    "(.seg.nrrd); or a DICOM segmentation for PACS (.dcm); or an RT Structure Set for radiotherapy planning "
+    "(.rtstruct.dcm)";
 constexpr const char* kDicomSeriesHelp =
-    "DICOM folder of the scan the labels belong to (one series), which a .dcm --out refers to; by default a "
+    "DICOM folder of the scan the labels belong to (one series), which a .dcm or .rtstruct.dcm --out refers to; by default a "
     "DICOM segmentation given as --labels passes on the series it refers to";
 
-// Refuses (UsageError) --dicom-series unless --out is a DICOM segmentation (.dcm).
+// Refuses (UsageError) --dicom-series unless --out is a DICOM segmentation (.dcm) or RT Structure Set
+// (.rtstruct.dcm).
 void checkDicomSeriesOption(const std::string& dicomSeries, const std::string& out);
 
 // Refuses (UsageError) an --out whose map or table is the input map (`labels`) or the table it is read
 // with (`table`, empty: the one beside the map).
 void refuseInputsAsOutputs(const std::string& labels, const std::string& table, const std::string& out);
 
-// Writes `edited` to `out` with its tables beside it (a .seg.nrrd or .dcm carries its own); a .dcm refers
-// to the DICOM series in `dicomSeries`, else to the one a DICOM SEG input refers to (io/dicom_seg.h). Prints each row's voxels and mL in the input
+// Writes `edited` to `out` with its tables beside it (a .seg.nrrd or .dcm carries its own); a .dcm (DICOM
+// SEG, or an RT Structure Set for .rtstruct.dcm, io/dicom_rtstruct.h) refers to the DICOM series in
+// `dicomSeries`, else to the one a DICOM SEG input refers to (io/dicom_seg.h). Prints each row's voxels and mL in the input
 // and in `edited` and puts them in the report, says when the grid changed and prints the paths written.
 void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
                         const std::string& out, const std::string& dicomSeries, const CommonOptions& common,

@@ -1,10 +1,12 @@
 // DICOM SEG output through the `vesalius` program: `segment --out X.dcm` on the shipped DICOM series
 // (dcmqi's 3-slice CT; TotalSegmentator's JPEG 2000 series, anonymised without study and series UIDs)
 // read back with DCMTK and with our reader against `segment --out X.nii.gz`; `labels` passing the
-// references on; `info` on a SEG; a cut file refused in one line.
+// references on; `info` on a SEG; a cut file refused in one line; `segment` and `labels` writing RT
+// Structure Sets (.rtstruct.dcm) that refer to the series and fill back to the NIfTI's voxels.
 #include "run_command.h"
 
 #include "vesalius/core/atomic_file.h"
+#include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 
@@ -195,6 +197,44 @@ TEST(CliDicomSeg, ACutSegIsOneLineAndExitThree) {
     expectContains(r.err, cut);
   }
   EXPECT_FALSE(fs::exists(fresh("x.dcm")));
+}
+
+TEST(CliDicomSeg, SegmentAndLabelsWriteRtStructsReferringToTheSeries) {
+  const std::string folder = kData + "/dicom/ct-3slice-dcmqi/ct-3slice";
+  const std::string rt = fresh("ct-3slice.rtstruct.dcm"), nifti = fresh("ct-3slice-rt.nii.gz"),
+                    bone = fresh("bone.rtstruct.dcm");
+  CommandResult r = runVesalius({"segment", "--scan", folder, "--modality", "ct", "--out", rt});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_EQ(runVesalius({"segment", "--scan", folder, "--modality", "ct", "--out", nifti}).exitCode, 0);
+  EXPECT_FALSE(fs::exists(fs::path(rt).replace_extension(".tsv")));  // the structure set carries its names
+  const SourceUids source = sourceUids(folder);
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(rt.c_str()).good());
+  EXPECT_EQ(element(*file.getDataset(), DCM_Modality), "RTSTRUCT");
+  EXPECT_EQ(element(*file.getDataset(), DCM_StudyInstanceUID), source.study);
+  const LabelMap expected = io::readLabelMap(nifti);
+  const LabelMap back = io::readDicomRtStruct(rt, expected.labels.geometry);
+  std::size_t differing = 0;
+  for (std::size_t n = 0; n < expected.labels.values.size(); ++n)
+    differing += back.labels.values[n] != expected.labels.values[n];
+  std::cout << "ct-3slice.rtstruct.dcm: " << fs::file_size(rt) << " bytes, " << back.table.entries.size()
+            << " ROIs, " << differing << " voxels differ from the NIfTI\n";
+  EXPECT_EQ(differing, 0u);
+
+  // `labels` on the NIfTI, referring to the series named with --dicom-series.
+  r = runVesalius({"labels", "extract", "--labels", nifti, "--label", "bone", "--out", bone, "--dicom-series", folder});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  DcmFileFormat boneFile;
+  ASSERT_TRUE(boneFile.loadFile(bone.c_str()).good());
+  DcmItem *frame = nullptr, *study = nullptr, *series = nullptr;
+  ASSERT_TRUE(boneFile.getDataset()->findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0).good());
+  EXPECT_EQ(element(*frame, DCM_FrameOfReferenceUID), source.frameOfReference);
+  ASSERT_TRUE(frame->findAndGetSequenceItem(DCM_RTReferencedStudySequence, study, 0).good());
+  ASSERT_TRUE(study->findAndGetSequenceItem(DCM_RTReferencedSeriesSequence, series, 0).good());
+  EXPECT_EQ(element(*series, DCM_SeriesInstanceUID), source.series);
+  const LabelMap extracted = io::readDicomRtStruct(bone, expected.labels.geometry);
+  ASSERT_EQ(extracted.table.entries.size(), 1u);
+  EXPECT_EQ(extracted.table.entries.front().name, "bone");
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 // silenced, so a problem reaches the user once, as a BadInput naming the file.
 #include "vesalius/io/dicom_seg.h"
 
+#include "dicom_common.h"
 #include "image_io_itk.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/dicom_rtstruct.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -20,85 +22,21 @@
 #include <dcmtk/dcmiod/iodmacro.h>
 #include <dcmtk/dcmseg/segdoc.h>
 #include <dcmtk/dcmseg/segment.h>
-#include <dcmtk/oflog/oflog.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <mutex>
 
 namespace vesalius::io {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-void quietDcmtk() {
-  static std::once_flag once;
-  std::call_once(once, [] { OFLog::configure(OFLogger::FATAL_LOG_LEVEL); });
-}
-
-void check(const OFCondition& condition, const std::string& path, const std::string& what) {
-  if (condition.bad()) throw BadInput(path, what + ": " + condition.text());
-}
-
-std::string text(DcmItem& item, const DcmTagKey& tag) {
-  OFString value;
-  if (item.findAndGetOFStringArray(tag, value).bad()) return {};
-  return value.c_str();
-}
-
-// A decimal string (DS) holds at most 16 characters: the most digits that fit.
-std::string decimal(double value) {
-  if (std::abs(value) < 1e-12) value = 0;
-  char buffer[40];
-  for (int digits = 15; digits > 1; --digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::string(buffer).size() <= 16) break;
-  }
-  return buffer;
-}
-
-std::optional<Eigen::Vector3d> imagePosition(DcmItem& item) {
-  Eigen::Vector3d p;
-  for (int c = 0; c < 3; ++c)
-    if (item.findAndGetFloat64(DCM_ImagePositionPatient, p[c], c).bad()) return std::nullopt;
-  return p;
-}
-
-// Patient, study and frame of reference from a dataset (a source image or a SEG).
-DicomSourceSeries sourceAttributes(DcmItem& data) {
-  DicomSourceSeries s;
-  s.studyInstanceUid = text(data, DCM_StudyInstanceUID);
-  s.seriesInstanceUid = text(data, DCM_SeriesInstanceUID);
-  s.frameOfReferenceUid = text(data, DCM_FrameOfReferenceUID);
-  s.patientName = text(data, DCM_PatientName);
-  s.patientId = text(data, DCM_PatientID);
-  s.patientBirthDate = text(data, DCM_PatientBirthDate);
-  s.patientSex = text(data, DCM_PatientSex);
-  s.studyDate = text(data, DCM_StudyDate);
-  s.studyTime = text(data, DCM_StudyTime);
-  s.studyId = text(data, DCM_StudyID);
-  s.accessionNumber = text(data, DCM_AccessionNumber);
-  s.referringPhysicianName = text(data, DCM_ReferringPhysicianName);
-  s.studyDescription = text(data, DCM_StudyDescription);
-  return s;
-}
-
-// Loads the file's header elements (not the pixels unless `withPixels`); BadInput if it is not DICOM.
-void loadDicom(DcmFileFormat& file, const std::string& path, bool withPixels) {
-  quietDcmtk();
-  itk_seam::checkDicomFileStructure(path);
-  const OFCondition status =
-      withPixels ? file.loadFile(path.c_str()) : file.loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange,
-                                                                       DCM_MaxReadLength, ERM_autoDetect, DCM_PixelData);
-  if (status.bad()) throw BadInput(path, std::string("not a readable DICOM file: ") + status.text());
-}
+using namespace dicom;
 
 // The SOP class and instance UIDs of an image: the dataset's, else the file meta header's (some
 // anonymisers empty the dataset's and keep the meta header's).
@@ -112,11 +50,6 @@ DicomSourceImage sourceImageOf(DcmFileFormat& file) {
   if (image.sopInstanceUid.empty()) image.sopInstanceUid = text(meta, DCM_MediaStorageSOPInstanceUID);
   image.position = imagePosition(data);
   return image;
-}
-
-std::string sopClassOf(DcmFileFormat& file) {
-  std::string uid = text(*file.getDataset(), DCM_SOPClassUID);
-  return uid.empty() ? text(*file.getMetaInfo(), DCM_MediaStorageSOPClassUID) : uid;
 }
 
 DicomSourceSeries seriesOfFiles(const std::vector<std::string>& files) {
@@ -188,11 +121,6 @@ void setSourceModules(DcmSegmentation& seg, const DicomSourceSeries& s, const st
     set(seg.getFrameOfReference().setFrameOfReferenceUID(s.frameOfReferenceUid.c_str()), "Frame of Reference UID");
 }
 
-std::string newUid() {
-  char uid[100];
-  return dcmGenerateUniqueIdentifier(uid, SITE_INSTANCE_UID_ROOT);
-}
-
 void addSharedGeometry(DcmSegmentation& seg, const GridGeometry& g, const std::string& path) {
   const Eigen::Vector3d i = g.direction.col(0).normalized(), j = g.direction.col(1).normalized();
   std::unique_ptr<FGPlaneOrientationPatient> orientation(FGPlaneOrientationPatient::createMinimal(
@@ -226,7 +154,7 @@ void addSegments(DcmSegmentation& seg, const LabelTable& table, const std::vecto
     check(DcmSegment::create(raw, name.substr(0, 64).c_str(), kTissue, kTissue, DcmSegTypes::SAT_AUTOMATIC, "Vesalius"),
           path, "cannot write segment '" + name + "'");
     std::unique_ptr<DcmSegment> segment(raw);
-    check(segment->setSegmentDescription(("label " + std::to_string(id)).c_str()), path, "cannot write a segment");
+    check(segment->setSegmentDescription(labelDescription(id).c_str()), path, "cannot write a segment");
     double l = 0, a = 0, b = 0;
     IODCIELabUtil::rgb2DicomLab(l, a, b, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
     check(segment->setRecommendedDisplayCIELabValue(Uint16(std::lround(l)), Uint16(std::lround(a)),
@@ -236,24 +164,6 @@ void addSegments(DcmSegmentation& seg, const LabelTable& table, const std::vecto
     check(seg.addSegment(segment.get(), number), path, "cannot add segment '" + name + "'");
     segment.release();  // the segmentation owns it now
   }
-}
-
-// The source image at slice k of the grid: nearest along the slice normal, within a quarter slice.
-// None when the source has no Series Instance UID (an anonymised series): a SEG lists the images its frames
-// derive from under their series (Common Instance Reference module), so it cannot name them.
-const DicomSourceImage* sourceImageAt(const DicomSourceSeries* source, const GridGeometry& g, int k) {
-  if (!source || source->seriesInstanceUid.empty()) return nullptr;
-  const Eigen::Vector3d normal = g.direction.col(0).cross(g.direction.col(1)).normalized();
-  const double at = normal.dot(g.indexToWorld(Eigen::Vector3d(0, 0, k)));
-  const double step = std::abs(normal.dot(g.direction.col(2))) * g.spacing.z();
-  const DicomSourceImage* best = nullptr;
-  double bestDistance = 0.25 * step;
-  for (const DicomSourceImage& image : source->images) {
-    if (!image.position || image.sopInstanceUid.empty()) continue;
-    const double distance = std::abs(normal.dot(*image.position) - at);
-    if (distance <= bestDistance) best = &image, bestDistance = distance;
-  }
-  return best;
 }
 
 // The frames in the order they were added: the label and slice each one shows.
@@ -358,14 +268,7 @@ void writeSegFile(const std::string& path, const std::string& reportedPath, cons
   DcmFileFormat file;
   check(seg->writeDataset(*file.getDataset()), reportedPath, "cannot make the DICOM segmentation");
   putPixelData(*file.getDataset(), labels, added, reportedPath);
-  check(file.saveFile(path.c_str(), EXS_LittleEndianExplicit), reportedPath, "cannot write the DICOM segmentation");
-  // A full disk can cut the file without DCMTK noticing: its length must be what DCMTK says it wrote.
-  const Uint32 expected = file.calcElementLength(EXS_LittleEndianExplicit, EET_ExplicitLength);
-  std::error_code error;
-  const std::uintmax_t size = fs::file_size(path, error);
-  if (error || size < expected)
-    throw BadInput(reportedPath, "the DICOM segmentation was not written whole (" + std::to_string(size) + " of " +
-                                     std::to_string(expected) + " bytes)");
+  saveWhole(file, EXS_LittleEndianExplicit, path, reportedPath, "DICOM segmentation");
 }
 
 // ---------------------------------------------------------------------------------------------- reading
@@ -494,12 +397,8 @@ std::map<Uint16, LabelEntry> segmentEntries(DcmSegmentation& seg, const std::str
     segment->getSegmentLabel(label);
     segment->getSegmentDescription(description);
     LabelEntry entry{Label(number), label.c_str(), {}};
-    const std::string d = description.c_str();
-    long id = 0;
-    if (d.rfind("label ", 0) == 0 && d.size() > 6 && d.size() <= 11 &&
-        d.find_first_not_of("0123456789", 6) == std::string::npos)
-      id = std::stol(d.substr(6));
-    if (id >= 1 && id <= 65535 && !taken[id]) taken[id] = true, entry.id = Label(id);
+    const Label id = labelOfDescription(description.c_str());
+    if (id != 0 && !taken[id]) taken[id] = true, entry.id = id;
     else described = false;
     if (entry.name.empty()) entry.name = "Segment_" + std::to_string(number);
     entries[Uint16(number)] = entry;
@@ -532,7 +431,9 @@ DicomSourceSeries referencesOf(DcmFileFormat& file, const std::vector<Frame>& fr
 
 }  // namespace
 
-bool isDicomSegPath(const std::string& path) { return fileExtension(path) == ".dcm"; }
+bool isDicomSegPath(const std::string& path) {
+  return fileExtension(path) == ".dcm" && !isDicomRtStructPath(path);
+}
 
 bool isDicomSegFile(const std::string& path) {
   std::error_code error;
@@ -577,6 +478,9 @@ DicomSegmentation readDicomSeg(const std::string& path) {
   DcmFileFormat file;
   loadDicom(file, path, true);
   const std::string sopClass = sopClassOf(file);
+  if (sopClass == UID_RTStructureSetStorage)
+    throw BadInput(path, "an RT Structure Set, not a DICOM segmentation: its contours have no grid of their own and "
+                         "are read onto a scan's grid (io/dicom_rtstruct.h)");
   if (sopClass != UID_SegmentationStorage)
     throw BadInput(path, "not a DICOM segmentation (SOP Class UID " + (sopClass.empty() ? "missing" : sopClass) + ")");
   // The frames' bits follow each other without padding (PS3.5 8.1.1, Bits Allocated 1): frame f's pixel n

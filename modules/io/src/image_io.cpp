@@ -6,6 +6,7 @@
 #include "raw_geometry.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/label_table_io.h"
 #include "vesalius/io/slicer_segmentation.h"
@@ -268,6 +269,12 @@ void nameUnlistedLabels(const std::vector<Label>& labels, LabelTable& table) {
       table.add(LabelEntry{Label(id), "label_" + std::to_string(id), defaultLabelColor(Label(id))});
 }
 
+// Label maps in one file that names its labels (3D Slicer segmentations, DICOM SEG, RT Structure Sets):
+// no label tables beside them.
+bool namesItsLabels(const std::string& path) {
+  return isSlicerSegmentationPath(path) || isDicomSegPath(path) || isDicomRtStructPath(path);
+}
+
 }  // namespace
 
 GridGeometry geometryOf(const itk_seam::RawHeader& header) {
@@ -345,6 +352,7 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options) {
   if (isSlicerSegmentationPath(path)) return writeSlicerSegmentation(path, labelMap, options);
   if (isDicomSegPath(path)) return writeDicomSeg(path, labelMap, nullptr, options);
+  if (isDicomRtStructPath(path)) return writeDicomRtStruct(path, labelMap, nullptr, options);
   checkWritableFormat(path);
   const Grid<Label>& labels = labelMap.labels;
   checkValueCount(labels.geometry, labels.values.size(), path);
@@ -362,18 +370,17 @@ void writeLabelMap(const std::string& path, const LabelMap& labelMap, const Writ
 
 std::vector<std::string> labelMapFiles(const std::string& path) {
   std::vector<std::string> files{path};
-  if (isSlicerSegmentationPath(path) || isDicomSegPath(path)) return files;
+  if (namesItsLabels(path)) return files;
   for (const std::string& table : labelTableSidecarPaths(path)) files.push_back(table);
   return files;
 }
 
 std::string labelTableSidecarPath(const std::string& labelMapPath) {
-  return isSlicerSegmentationPath(labelMapPath) || isDicomSegPath(labelMapPath) ? labelMapPath
-                                                                                : pathStem(labelMapPath) + ".tsv";
+  return namesItsLabels(labelMapPath) ? labelMapPath : pathStem(labelMapPath) + ".tsv";
 }
 
 std::vector<std::string> labelTableSidecarPaths(const std::string& labelMapPath) {
-  if (isSlicerSegmentationPath(labelMapPath) || isDicomSegPath(labelMapPath)) return {};
+  if (namesItsLabels(labelMapPath)) return {};
   const std::string stem = pathStem(labelMapPath);
   return {stem + ".tsv", stem + ".ctbl", stem + ".label.txt"};
 }

@@ -48,7 +48,8 @@ struct DicomSourceSeries {
   std::vector<DicomSourceImage> images;
 };
 
-// True for an output path ending ".dcm" (any case): label maps written there are DICOM SEG objects.
+// True for an output path ending ".dcm" (any case) but not ".rtstruct.dcm" (dicom_rtstruct.h): label maps
+// written there are DICOM SEG objects.
 bool isDicomSegPath(const std::string& path);
 
 // True if `path` is a readable DICOM file whose SOP Class is Segmentation Storage.

@@ -63,7 +63,8 @@ ScanInfo describeScan(const std::string& path, const ScanReadOptions& options = 
 // named "label_<id>" with defaultLabelColor(id).
 // A 3D Slicer segmentation (.seg.nrrd) names its own segments (slicer_segmentation.h); its layers are
 // merged into one map, and overlapping segments throw BadInput naming them. A DICOM file is read as a DICOM
-// SEG (dicom_seg.h); any other DICOM file throws BadInput.
+// SEG (dicom_seg.h); any other DICOM file throws BadInput (an RT Structure Set has no grid: it is read onto
+// a scan's with readDicomRtStruct, dicom_rtstruct.h).
 LabelMap readLabelMap(const std::string& path, const std::string& tablePath = "");
 
 // Writes the labels (uint8 if every id is below 256, else uint16) and the table three times beside them,
@@ -71,7 +72,8 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath = ""
 // colour table, an ITK-SNAP label description file), all or none (writeFilesAtomically); none is written if
 // any exists and !options.force.
 // A path ending .seg.nrrd is written as a Slicer segmentation carrying the table itself, without sidecars;
-// one ending .dcm as a DICOM SEG without a source series (dicom_seg.h), also without sidecars.
+// one ending .rtstruct.dcm as an RT Structure Set without a source series (dicom_rtstruct.h), and any other
+// ending .dcm as a DICOM SEG without one (dicom_seg.h), both also without sidecars.
 void writeLabelMap(const std::string& path, const LabelMap& labelMap, const WriteOptions& options = {});
 
 // The files writeLabelMap(path) writes: the path, then its sidecar tables (none for .seg.nrrd, .dcm), so that a
