@@ -137,15 +137,16 @@ class Region {
 
 // L-BFGS (Nocedal and Wright 2006, Alg. 7.4: two-loop recursion, H0 = sᵀy / yᵀy) with a backtracking
 // Armijo line search; the first step moves no vertex by more than a tenth of `size`. energy(x, g, detMin)
-// returns the energy and writes its gradient and the smallest D. Stops early once every D reaches the goal
-// (the vertices then stay nearer the skinned shape). Returns the final energy.
+// returns the energy and writes its gradient and the smallest D. With `stopAtGoal`, stops early once every D
+// reaches the goal (the vertices then stay nearer the skinned shape). Returns the final energy.
 template <class Energy>
-double minimizeLbfgs(const Energy& energy, Eigen::VectorXd& x, double size, const UntangleOptions& o) {
+double minimizeLbfgs(const Energy& energy, Eigen::VectorXd& x, double size, const UntangleOptions& o, int iterations,
+                     bool stopAtGoal) {
   Eigen::VectorXd g, gNext;
   double detMinNext;
   double E = energy(x, g, detMinNext);
   std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> pairs;  // (s, y), newest last
-  for (int iteration = 0; iteration < o.maxIterations; ++iteration) {
+  for (int iteration = 0; iteration < iterations; ++iteration) {
     Eigen::VectorXd d = -g;
     std::vector<double> alpha(pairs.size());
     for (std::size_t k = pairs.size(); k-- > 0;) {
@@ -173,13 +174,14 @@ double minimizeLbfgs(const Energy& energy, Eigen::VectorXd& x, double size, cons
     x = std::move(xNext);
     g = gNext;
     E = ENext;
-    if (decrease <= 1e-12 * std::abs(E) || detMinNext >= o.minVolumeRatio) break;
+    if (decrease <= 1e-12 * std::abs(E) || (stopAtGoal && detMinNext >= o.minVolumeRatio)) break;
   }
   return E;
 }
 
 // Minimises the region's energy from the skinned positions with ε decreasing (the paper's rule) until every
-// tet reaches minVolumeRatio or the rounds run out; writes the free vertices back.
+// tet reaches minVolumeRatio or the rounds run out, then relaxes it with the exact barrier; writes the free
+// vertices back.
 void untangleRegion(const Region& region, const UntangleOptions& o, MatrixX3d& posedV) {
   Eigen::VectorXd x = region.positions(posedV);
   double epsilon = 1, detMin;
@@ -188,12 +190,22 @@ void untangleRegion(const Region& region, const UntangleOptions& o, MatrixX3d& p
     const auto energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& g, double& atDetMin) {
       return region.energy(at, epsilon, o.theta, &g, atDetMin);
     };
-    const double E = minimizeLbfgs(energy, x, region.size(), o);
+    const double E = minimizeLbfgs(energy, x, region.size(), o, o.maxIterations, true);
     region.energy(x, epsilon, o.theta, nullptr, detMin);
     const double sigma = std::max(1 - E / EPrevious, 0.1);
     const double mu = (1 - sigma) * chi(detMin, epsilon);
     epsilon = detMin < mu ? 2 * std::sqrt(mu * (mu - detMin)) : 1e-10;
     EPrevious = region.energy(x, epsilon, o.theta, nullptr, detMin);
+  }
+  // The rounds stop at the goal while ε may still be large, and a large ε makes shrunken tets cheapest
+  // (χ(D, ε) tends to ε/2, so both terms fall with D): the region is left smaller than at rest, a limb's
+  // cross-section by several per cent. With every D positive, the exact barrier (ε → 0) keeps them so
+  // along the line search, and its volume term, (D² + 1) / D, is least at the rest volume.
+  if (detMin >= o.minVolumeRatio) {
+    const auto exact = [&](const Eigen::VectorXd& at, Eigen::VectorXd& g, double& atDetMin) {
+      return region.energy(at, 1e-10, o.theta, &g, atDetMin);
+    };
+    minimizeLbfgs(exact, x, region.size(), o, o.maxIterations, false);
   }
   region.write(x, posedV);
 }

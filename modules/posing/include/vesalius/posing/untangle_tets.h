@@ -17,9 +17,12 @@
 // bone), with every other vertex held at its skinned position, so the repair stays local and the skinned shape
 // is kept outside it. The mesh boundary inside a region is free (the fold is pushed out of the joint). The
 // reference shape is the rest tet (the skinned one is itself inverted). A region still bad after its solve is
-// grown by one ring and solved again, up to `maxRings`. The minimisation stops as soon as every tet of the
-// region reaches minVolumeRatio, within a round if need be (the paper iterates to convergence of the energy,
-// which would pull the vertices further from the skinned shape, towards the rest shapes). A tet still bad at
+// grown by one ring and solved again, up to `maxRings`. The rounds stop as soon as every tet of the region
+// reaches minVolumeRatio, within a round if need be; then `maxIterations` L-BFGS iterations with the exact
+// barrier (ε → 0) give the region back the volume the early rounds took: while ε is large, shrunken tets
+// cost least, and a region left there had lost several per cent of a limb's cross-section (the paper
+// iterates with decreasing ε to convergence instead, which would pull the whole region towards the rest
+// shapes). A tet still bad at
 // maxRings lies in a fold pressed between bone vertices (a sharply bent elbow brings the bone regions of the
 // tets, which are coarser than the bones, close enough that no place of the free vertices between them is
 // valid): the bone vertices of its corners are freed and its region solved again, up to `releaseRounds` times.
