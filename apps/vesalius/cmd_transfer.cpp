@@ -22,7 +22,6 @@
 #include "vesalius/transfer/transfer_rules.h"
 #include "vesalius/viz/surface_render.h"
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -77,14 +76,13 @@ void runTransfer(const TransferOptions& o, CommandRun& run) {
   run.report.parameter("registration_iterations", o.registrationIterations);
   run.report.parameter("registration", o.registration);
   run.report.parameter("laplace_solver", o.laplaceSolver);
-  auto start = std::chrono::steady_clock::now();
-  const auto endStage = [&](const std::string& name) {
-    run.report.stage(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    start = std::chrono::steady_clock::now();
-  };
-  const ReferenceAnatomy reference = io::readReferenceAnatomy(o.reference);
-  const TriMesh target = readTarget(o);
-  endStage("reading");
+  ReferenceAnatomy reference;
+  TriMesh target;
+  {
+    auto timer = run.report.time("reading");
+    reference = io::readReferenceAnatomy(o.reference);
+    target = readTarget(o);
+  }
   // The fat first, so that a bad file fails before the registration's work. --fat-amounts takes `fat
   // edit`'s defaults: 15 mm voxels, 50 mm per unit amount, 0 for the bones it does not name.
   std::string fatKind = "bone amounts";
@@ -94,16 +92,16 @@ void runTransfer(const TransferOptions& o, CommandRun& run) {
   run.report.parameter("fat_kind", fatKind);
 
   run.progress.begin("register", "skin registration (ICP with shape matching)");
-  start = std::chrono::steady_clock::now();
   const transfer::SkinParts parts = transfer::skinPartsFromBones(reference);
   run.report.metric("registration_parts", o.registration == "plain" ? 1 : long(parts.order.size()));
   const std::vector<transfer::SkinLandmark> landmarks = readSkinLandmarks(o, reference.skin);
   transfer::ReferenceSkinRegistrationOptions registration;
   registration.registration.registration.iterations = o.registrationIterations;
   registration.articulated = o.registration != "plain";
-  const transfer::SkinRegistration registered =
-      transfer::registerReferenceSkin(reference, parts, target.V, target.F, registration, landmarks);
-  endStage("skin registration");
+  const transfer::SkinRegistration registered = [&] {
+    auto timer = run.report.time("skin registration");
+    return transfer::registerReferenceSkin(reference, parts, target.V, target.F, registration, landmarks);
+  }();
   run.progress.end();
   run.report.metric("registration_mean_distance_mm", registered.finalMeanDistance);
   run.report.metric("registration_max_distance_mm", registered.finalMaxDistance);
@@ -133,7 +131,6 @@ void runTransfer(const TransferOptions& o, CommandRun& run) {
   }
   const transfer::TransferredAnatomy& result = into.transferred;
   const GridGeometry& grid = into.grid;
-  start = std::chrono::steady_clock::now();
   run.report.metric("grid", {grid.size.x(), grid.size.y(), grid.size.z()});
   const auto iterations = [](const transfer::DisplacementField& f) {
     return nlohmann::json{f.solves[0].iterations, f.solves[1].iterations, f.solves[2].iterations};
@@ -141,23 +138,27 @@ void runTransfer(const TransferOptions& o, CommandRun& run) {
   run.report.metric("laplace_iterations", {{"skin_field", iterations(result.skinField)}, {"final_field", iterations(result.finalField)}});
   run.report.metric("unfold_passes", result.finalField.unfoldPasses);
   run.report.metric("unfold_released_cells", result.finalField.releasedCells);
-  // The rules on the body the pipeline made of the registered skin (with its cavities): the eroded one is
-  // that unless fat was eroded; a vertex one field voxel inside the reference's skin counts as deep.
-  const meshing::BodyDistance body =
-      into.eroded ? meshing::bodySignedDistance(into.anatomy.skin) : into.erodedBody;
-  transfer::AnatomyRulesOptions rulesOptions;
-  rulesOptions.skinDistance = &body.signedDistance;
-  rulesOptions.skinCavities = &body.cavities;
-  rulesOptions.referenceSkinDistance = &into.referenceBody.signedDistance;
-  rulesOptions.referenceSkinCavities = &into.referenceBody.cavities;
-  rulesOptions.deepMm = o.voxelSize;
-  const transfer::TransferRules checked = transfer::checkTransferRules(reference, into.anatomy, result, rulesOptions);
-  reportTransferRules(reference, into, checked, body, o.voxelSize, run.report);
+  const transfer::TransferRules checked = [&] {
+    auto timer = run.report.time("checks");
+    // The rules on the body the pipeline made of the registered skin (with its cavities): the eroded one
+    // is that unless fat was eroded; a vertex one field voxel inside the reference's skin counts as deep.
+    const meshing::BodyDistance body =
+        into.eroded ? meshing::bodySignedDistance(into.anatomy.skin) : into.erodedBody;
+    transfer::AnatomyRulesOptions rulesOptions;
+    rulesOptions.skinDistance = &body.signedDistance;
+    rulesOptions.skinCavities = &body.cavities;
+    rulesOptions.referenceSkinDistance = &into.referenceBody.signedDistance;
+    rulesOptions.referenceSkinCavities = &into.referenceBody.cavities;
+    rulesOptions.deepMm = o.voxelSize;
+    transfer::TransferRules c = transfer::checkTransferRules(reference, into.anatomy, result, rulesOptions);
+    reportTransferRules(reference, into, c, body, o.voxelSize, run.report);
+    return c;
+  }();
   const transfer::AnatomyRules& rules = checked.rules;
-  endStage("checks");
-
-  writeTransferOutputs(reference, into, o.out, o.png, o.common.writeOptions(), run.report);
-  endStage("writing");
+  {
+    auto timer = run.report.time("writing");
+    writeTransferOutputs(reference, into, o.out, o.png, o.common.writeOptions(), run.report);
+  }
   std::cout << std::fixed << std::setprecision(2) << o.out << ": " << reference.tissues.size()
             << " tissues transferred; skin registered to " << registered.finalMeanDistance << " mm (mean), "
             << result.boneGroups.size() << " bone groups, Jacobian min " << rules.folds.jacobian.minimum << ", "
