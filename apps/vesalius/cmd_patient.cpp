@@ -107,6 +107,15 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
     if (o.rigTets > 0) rig->targetTets = o.rigTets;
     if (o.rigVoxelSize > 0) rig->voxelSize = o.rigVoxelSize;
   }
+  // One bar over the command: the reference built, the pipeline's stages, the pose and the writing, by
+  // their seconds on the shipped CT.
+  StagePlan plan;
+  if (o.complete) plan.emplace_back("reference", 10);
+  for (const auto& stage : patient::virtualPatientStages(organs ? &*organs : nullptr, templates, pipeline, o.complete))
+    plan.push_back(stage);
+  if (!o.pose.empty() || motion) plan.emplace_back("pose", 10);
+  plan.emplace_back("writing", 10);
+  run.progress.plan(plan);
   if (o.complete) {
     run.progress.begin("reference", "the full-body reference");
     reference = fullBodyReference(o);
@@ -131,8 +140,10 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
     run.progress.end();
   }
 
+  run.progress.begin("writing", "the patient's folder");
   writeFolderAtomically(o.out, o.common.writeOptions(),
                         [&](const std::string& staged) { writePatientFolder(scan, p, pose ? &*pose : nullptr, o.png, staged, run.report); });
+  run.progress.end();
 
   const ReferenceAnatomy& model = p.model();
   std::cout << std::fixed << std::setprecision(2) << "\nSummary\n  " << o.out << "/anatomy: "

@@ -132,12 +132,15 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                        {"vertices", b.registration.mesh.V.rows()},
                        {"label_boundary_to_bone_mean_mm", b.registration.boundaryToMeshMeanMm},
                        {"label_boundary_to_bone_max_mm", b.registration.boundaryToMeshMaxMm}};
+  nlohmann::json replaced = nlohmann::json::object();
+  for (const auto& [tissue, faces] : whole.replacedFaces) replaced[tissue] = faces;
   report.metric("completion", {{"tissues", c.anatomy.tissues.size()},
                                {"skin_vertices_pulled_by_scan", pulled.sum()},
                                {"scan_skin_to_completed_mean_mm", c.registration.skinMeanDistance},
                                {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance},
                                {"bone_groups_on_labels", groups},
-                               {"bones_on_labels", bones}});
+                               {"bones_on_labels", bones},
+                               {"reference_faces_replaced_inside_scan", replaced}});
 }
 
 // Dicko et al.'s rules on the whole model, in brief: whether each holds and its worst value and tissue.

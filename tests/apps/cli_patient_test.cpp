@@ -106,6 +106,29 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   }
   EXPECT_EQ(m["label_tissues"]["femur_left"][0], "anatomy/tissues/l_femur.obj");
 
+  // OpenSim's spine and rib cage are one mesh each; inside the field of view the labels' vertebrae and ribs
+  // take their place: no vertex of them lies inside the scan, and the labels' vertebrae and ribs are
+  // in the model, in the torso's group (so the rig moves them with the torso, checked below).
+  const nlohmann::json& replaced = m["completion"]["reference_faces_replaced_inside_scan"];
+  std::cout << "reference faces replaced inside the scan: " << replaced.dump() << '\n';
+  const GridGeometry& scan = labels.labels.geometry;
+  const auto insideScan = [&](const Eigen::Vector3d& p) {
+    const Eigen::Array3d index = scan.worldToIndex(p).array();
+    return (index >= -0.5).all() && (index <= scan.size.cast<double>().array() - 0.5).all();
+  };
+  for (const char* name : {"hat_spine", "hat_ribs_scap"}) {
+    SCOPED_TRACE(name);
+    EXPECT_GT(replaced.value(name, 0L), 0L);
+    const auto t = std::find_if(anatomy.tissues.begin(), anatomy.tissues.end(),
+                                [&](const ReferenceTissue& x) { return x.name == name; });
+    ASSERT_NE(t, anatomy.tissues.end());
+    long inside = 0;
+    for (Eigen::Index v = 0; v < t->mesh.V.rows(); ++v) inside += insideScan(t->mesh.V.row(v).transpose());
+    EXPECT_EQ(inside, 0);
+  }
+  for (const ReferenceTissue& t : anatomy.tissues)
+    if (t.name.rfind("vertebrae_", 0) == 0 || t.name.rfind("rib_", 0) == 0) EXPECT_EQ(t.group, "torso") << t.name;
+
   // The scan's skin: closed, its cut on the field of view's caps, fat from the forests (none on the cut).
   const ReferenceAnatomy scanAnatomy = io::readReferenceAnatomy(out + "/scan_anatomy");
   const io::TriMeshSummary skin = io::summarize(scanAnatomy.skin);
@@ -158,6 +181,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   std::cout << rigidBones << " bone meshes, the largest vertex distance from a rigid motion " << worstOffRigid
             << " mm; the tissue next to them up to " << pose["max_bone_mesh_gap_mm"] << " mm from their surface\n";
   EXPECT_GT(rigidBones, 40);
+  EXPECT_NE(io::readTextFile(out + "/rig/bone_meshes.txt").find("vertebrae_L5.obj\ttorso"), std::string::npos);
   EXPECT_LT(worstOffRigid, 1e-6);
   for (const char* file : {"posed/anatomy/reference.json", "posed/patient.glb", "posed/tets.vtu", "posed/skeleton.bvh",
                            "posed/scan.nii.gz", "posed/organs.nii.gz", "rig/rig.vtu", "rig/meshes/skin.obj"})
@@ -248,11 +272,37 @@ TEST(CliPatient, PosedByAFrameOfAMotion) {
 }
 
 // Without the organ map: inside the field of view the scan's skin and bone class (scan_anatomy/); the model
-// is the full-body reference completed into the patient, its bones inside its skin, and rigged.
+// is the full-body reference completed into the patient, its bones inside its skin, and rigged. Run with
+// Slicer's progress lines: one bar over the whole command, every stage of the report announced on it.
 TEST(CliPatient, WithoutOrgansTheScansOwnSkinAndBone) {
   const std::string out = fresh("without_organs");
-  const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "none"});
+  const CommandResult r = runVesalius({"patient", "--scan", kCtScan, "--out", out, "--progress", "slicer"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::istringstream lines(r.out);
+  long starts = 0, ends = 0;
+  double last = -1, beforeWriting = -1;
+  std::string announced;
+  for (std::string line; std::getline(lines, line);) {
+    starts += line.rfind("<filter-start>", 0) == 0;
+    ends += line.rfind("<filter-end>", 0) == 0;
+    if (line.rfind("<filter-comment>", 0) == 0 || line.rfind("<filter-start>", 0) == 0) announced += line + '\n';
+    if (line.rfind("<filter-comment>writing", 0) == 0) beforeWriting = last;
+    const std::string tag = "<filter-progress>";
+    if (line.rfind(tag, 0) != 0) continue;
+    const double value = std::stod(line.substr(tag.size()));
+    EXPECT_GT(value, last) << line;
+    last = value;
+  }
+  // Stages sharing the bar by halves would stand above 0.99 after the eleven before the writing.
+  std::cout << starts << " start, " << ends << " end; the whole command's fraction " << beforeWriting
+            << " when the writing begins, " << last << " last\n";
+  EXPECT_EQ(starts, 1);
+  EXPECT_EQ(ends, 1);
+  EXPECT_EQ(last, 1.0);
+  EXPECT_GT(beforeWriting, 0.5);
+  EXPECT_LT(beforeWriting, 0.99);
+  for (const nlohmann::json& stage : readJson(out + "/report.json")["stages"])
+    EXPECT_NE(announced.find(">" + stage["name"].get<std::string>()), std::string::npos) << stage["name"];
   const ReferenceAnatomy whole = io::readReferenceAnatomy(out + "/anatomy");
   const Grid<std::uint8_t> wholeBody = meshing::meshInsideMask(whole.skin, io::readScan(kCtScan).geometry);
   long boneVoxels = 0, boneOutside = 0;

@@ -79,7 +79,50 @@ std::string noRigBecause(const LabelMap* organs, const VirtualPatientOptions& op
   return missing.empty() ? "" : "the organ map has no voxels of" + missing;
 }
 
+// The templates fitted: those whose organ has voxels in the organ map (the scan's anatomy has a tissue
+// for every label with voxels).
+std::vector<const OrganTemplate*> templatesToFit(const LabelMap* organs, const std::vector<OrganTemplate>& templates) {
+  std::vector<const OrganTemplate*> fitted;
+  if (!organs) return fitted;
+  const LabelsWithVoxels present(*organs);
+  for (const OrganTemplate& t : templates)
+    if (present.idOf(t.organ)) fitted.push_back(&t);
+  return fitted;
+}
+
+// Each stage begun on the progress under its name and timed under it (VirtualPatient::stageSeconds).
+class Stages {
+ public:
+  Stages(std::vector<std::pair<std::string, double>>& seconds, Progress* progress) : clock_(seconds), progress_(progress) {}
+  void begin(const std::string& name, const std::string& comment) {
+    if (progress_) progress_->begin(name, comment);
+  }
+  void end(const std::string& name) {
+    if (progress_) progress_->end();
+    clock_.end(name);
+  }
+
+ private:
+  StageClock clock_;
+  Progress* progress_;
+};
+
 }  // namespace
+
+std::vector<std::pair<std::string, double>> virtualPatientStages(const LabelMap* organs,
+                                                                 const std::vector<OrganTemplate>& templates,
+                                                                 const VirtualPatientOptions& options, bool withReference) {
+  // Seconds on the shipped CT with its labels (docs/benchmarks.md, the virtual patient); an organ fit at
+  // the mean of the four templates'.
+  std::vector<std::pair<std::string, double>> stages{{"segmentation", 3}, {"anatomy from labels", 10}, {"fat forests", 3}};
+  const std::vector<const OrganTemplate*> fitted = templatesToFit(organs, templates);
+  for (const OrganTemplate* t : fitted) stages.emplace_back("fit " + t->organ, 35);
+  if (fitted.size() > 1) stages.emplace_back("organ separation", 5);
+  if (withReference)
+    stages.insert(stages.end(), {{"reference completion", 45}, {"whole model", 15}, {"anatomy rules", 3}});
+  if (noRigBecause(organs, options, withReference).empty()) stages.emplace_back("rig", 16);
+  return stages;
+}
 
 void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                const VirtualPatientOptions& options, bool withReference, bool posed,
@@ -103,15 +146,17 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
   checkVirtualPatientInputs(ct, organs, templates, options, options.fullBodyReference != nullptr, false, scanSource,
                             organsSource);
   VirtualPatient patient;
-  StageClock clock(patient.stageSeconds);
+  Stages stages(patient.stageSeconds, progress);
+  stages.begin("segmentation", "skin, fat, bone and soft tissue classes");
   try {
     patient.tissueClasses = segmentation::segmentCtTissues(ct, {}, progress);
   } catch (const BadInput& e) {
     if (!e.file().empty()) throw;
     throw BadInput(scanSource, e.problem());
   }
-  clock.end("segmentation");
+  stages.end("segmentation");
 
+  stages.begin("anatomy from labels", organs ? "the skin and a surface per label" : "the skin and the bone class");
   if (organs) {
     patient.anatomy = scanAnatomy(ct, *organs, options.surfaces, scanSource, organsSource, progress);
     if (patient.anatomy.tissues.empty()) throw BadInput(organsSource, "no label of its table has voxels");
@@ -119,29 +164,28 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
     patient.anatomy = classAnatomy(ct, patient.tissueClasses, options.surfaces, scanSource);
   }
   patient.anatomy.name = "patient (" + scanSource + ")";
-  clock.end("anatomy from labels");
+  stages.end("anatomy from labels");
 
+  stages.begin("fat forests", "subcutaneous fat thickness at the skin");
   patient.fatThickness = fatAtSkin(patient.tissueClasses, patient.anatomy, scanSource);
-  clock.end("fat forests");
+  stages.end("fat forests");
 
   // Each tissue represents its own label; the fits below replace a label's surface by a fitted template.
   for (const ReferenceTissue& tissue : patient.anatomy.tissues) patient.labelTissues[tissue.name] = {tissue.name};
-  for (const OrganTemplate& t : templates) {
-    const auto tissue = std::find_if(patient.anatomy.tissues.begin(), patient.anatomy.tissues.end(),
-                                     [&](const ReferenceTissue& r) { return r.name == t.organ; });
-    // Only with an organ map: not in it, or without voxels, the organ has no tissue to replace.
-    if (!organs || tissue == patient.anatomy.tissues.end()) continue;
-    FittedOrgan fitted{t.organ, t.source,
-                       fitOrganToLabel(t.surface, *organs, organs->table.resolve(t.organ), options.organFit,
+  for (const OrganTemplate* t : templatesToFit(organs, templates)) {
+    stages.begin("fit " + t->organ, "the template fitted to the label by plastic strains");
+    FittedOrgan fitted{t->organ, t->source,
+                       fitOrganToLabel(t->surface, *organs, organs->table.resolve(t->organ), options.organFit,
                                        organsSource, progress)};
     patient.fits.push_back(std::move(fitted));
-    clock.end("fit " + t.organ);
+    stages.end("fit " + t->organ);
   }
   if (patient.fits.size() > 1) {
+    stages.begin("organ separation", "fitted organs that touch pushed apart");
     std::vector<OrganFit*> fitted;
     for (FittedOrgan& f : patient.fits) fitted.push_back(&f.fit);
     patient.organSeparation = separateOrgans(fitted, options.organSeparation);
-    clock.end("organ separation");
+    stages.end("organ separation");
   }
   for (const FittedOrgan& f : patient.fits)
     for (ReferenceTissue& r : patient.anatomy.tissues)
@@ -149,19 +193,19 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
   patient.anatomy.validate(scanSource);
 
   if (options.fullBodyReference) {
+    stages.begin("reference completion", "the full-body reference completed into the patient beyond the scan");
     ReferenceCompletionOptions completion = options.completion;
     if (organs)
       completion.transfer.transfer.boneTargets =
-          boneGroupTargets(*options.fullBodyReference, *organs, options.boneGroupLabels);
+          boneGroupTargets(*options.fullBodyReference, *organs, options.whole.groupLabels);
     patient.completion = completeWithReference(patient.anatomy, patient.fatThickness, *options.fullBodyReference,
                                                completion, progress);
-    clock.end("reference completion");
-    if (progress) progress->begin("whole model", "the reference's bones onto the patient's labels");
-    patient.whole = wholeModel(patient.completion->anatomy, patient.anatomy, organs, options.referenceBoneLabels,
-                               options.boneRefinement, organsSource);
+    stages.end("reference completion");
+    stages.begin("whole model", "the reference's bones onto the patient's labels");
+    patient.whole = wholeModel(patient.completion->anatomy, patient.anatomy, organs, options.whole, organsSource);
     patient.whole->anatomy.name = "patient (" + scanSource + ") completed with " + options.fullBodyReference->name;
-    if (progress) progress->end();
-    clock.end("whole model");
+    stages.end("whole model");
+    stages.begin("anatomy rules", "Dicko et al.'s rules on the whole model");
     const TransferIntoBody& t = patient.completion->transfer;
     transfer::AnatomyRulesOptions rules;
     rules.referenceSkinDistance = &t.referenceBody.signedDistance;
@@ -169,16 +213,17 @@ VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, cons
     rules.deepMm = completion.transfer.voxelSizeMm;
     patient.rules = transfer::checkAnatomyRules(*options.fullBodyReference, patient.whole->anatomy,
                                                 &t.transferred.finalField, rules);
-    clock.end("anatomy rules");
+    stages.end("anatomy rules");
   }
 
   patient.noRigBecause = noRigBecause(organs, options, patient.whole.has_value());
   if (patient.noRigBecause.empty()) {
+    stages.begin("rig", "tets, bone weights and centres of rotation");
     if (patient.whole)
       patient.rig = rigWholeModel(patient.whole->anatomy, options.rigging, scanSource + " (the whole model)", progress);
     else
       patient.rig = rigPatient(patient.tissueClasses, *organs, patient.anatomy, options.rigging, organsSource, progress);
-    clock.end("rig");
+    stages.end("rig");
   }
   return patient;
 }

@@ -2,12 +2,44 @@
 
 #include "labels_with_voxels.h"
 
+#include "vesalius/core/keep_faces.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/surface_samples.h"
 
 #include <algorithm>
 
 namespace vesalius::patient {
+
+bool labelMatches(const std::string& name, const std::string& pattern) {
+  if (!pattern.empty() && pattern.back() == '*') return name.rfind(pattern.substr(0, pattern.size() - 1), 0) == 0;
+  return name == pattern;
+}
+
+namespace {
+
+// Whether the organ map has voxels of a label `pattern` matches.
+bool hasLabel(const LabelMap& organs, const LabelsWithVoxels& present, const std::string& pattern) {
+  return std::any_of(organs.table.entries.begin(), organs.table.entries.end(),
+                     [&](const LabelEntry& e) { return present.has(e.id) && labelMatches(e.name, pattern); });
+}
+
+// Faces of `mesh` wholly beyond the scan's extent (the box of its voxels, half a voxel beyond the outer
+// voxel centres): a face with a vertex inside would hold that vertex where the labels' bones are.
+std::vector<bool> facesBeyond(const TriMesh& mesh, const GridGeometry& scan) {
+  const Eigen::Array3d first = Eigen::Array3d::Constant(-0.5), last = scan.size.cast<double>().array() - 0.5;
+  std::vector<bool> inside(std::size_t(mesh.V.rows()));
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+    const Eigen::Array3d index = scan.worldToIndex(mesh.V.row(v).transpose()).array();
+    inside[std::size_t(v)] = (index >= first).all() && (index <= last).all();
+  }
+  std::vector<bool> beyond(std::size_t(mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    beyond[std::size_t(f)] = !inside[std::size_t(mesh.F(f, 0))] && !inside[std::size_t(mesh.F(f, 1))] &&
+                             !inside[std::size_t(mesh.F(f, 2))];
+  return beyond;
+}
+
+}  // namespace
 
 std::map<std::string, MatrixX3d> boneGroupTargets(const ReferenceAnatomy& reference, const LabelMap& organs,
                                                   const std::vector<std::pair<std::string, std::string>>& groupLabels,
@@ -18,11 +50,8 @@ std::map<std::string, MatrixX3d> boneGroupTargets(const ReferenceAnatomy& refere
     if (std::none_of(reference.tissues.begin(), reference.tissues.end(),
                      [&](const ReferenceTissue& t) { return t.kind == TissueKind::Bone && t.group == group; }))
       continue;
-    const bool prefix = !label.empty() && label.back() == '*';
-    const std::string stem = prefix ? label.substr(0, label.size() - 1) : label;
     for (const LabelEntry& e : organs.table.entries)
-      if (present.has(e.id) && (prefix ? e.name.rfind(stem, 0) == 0 : e.name == stem))
-        groups[group].push_back(e.id);
+      if (present.has(e.id) && labelMatches(e.name, label)) groups[group].push_back(e.id);
   }
   std::map<std::string, MatrixX3d> targets;
   for (const auto& [group, ids] : groups) {
@@ -38,36 +67,57 @@ std::map<std::string, MatrixX3d> boneGroupTargets(const ReferenceAnatomy& refere
 }
 
 WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy& inFov, const LabelMap* organs,
-                      const std::vector<std::pair<std::string, std::string>>& boneLabels,
-                      const BoneOntoLabelOptions& options, const std::string& organsSource) {
+                      const WholeModelOptions& options, const std::string& organsSource) {
   WholeModel model;
   model.anatomy = completed;
   if (!organs) return model;
   const LabelsWithVoxels present(*organs);
+  std::vector<ReferenceTissue>& tissues = model.anatomy.tissues;
+  const auto named = [&](const std::string& name) {
+    return std::find_if(tissues.begin(), tissues.end(), [&](const ReferenceTissue& x) { return x.name == name; });
+  };
   std::vector<std::string> represented;
-  for (const auto& [tissueName, label] : boneLabels) {
+  for (const auto& [tissueName, label] : options.boneLabels) {
     const Label id = present.idOf(label);
-    const auto t = std::find_if(model.anatomy.tissues.begin(), model.anatomy.tissues.end(),
-                                [&](const ReferenceTissue& x) { return x.name == tissueName; });
-    if (!id || t == model.anatomy.tissues.end()) continue;
+    const auto t = named(tissueName);
+    if (!id || t == tissues.end()) continue;
     RegisteredBone bone{tissueName, label,
-                        registerBoneOntoLabel(t->mesh, *organs, {id}, options, completed.name + ": " + tissueName, organsSource)};
+                        registerBoneOntoLabel(t->mesh, *organs, {id}, options.bones, completed.name + ": " + tissueName, organsSource)};
     t->mesh = bone.registration.mesh;
     model.labelTissues[label] = {tissueName};
     represented.push_back(label);
     model.bones.push_back(std::move(bone));
   }
+  for (const auto& [tissueName, label] : options.replacedInsideScan) {
+    const auto t = named(tissueName);
+    if (t == tissues.end() || !hasLabel(*organs, present, label)) continue;
+    const std::vector<bool> keep = facesBeyond(t->mesh, organs->labels.geometry);
+    const long gone = long(std::count(keep.begin(), keep.end(), false));
+    if (gone == 0) continue;
+    model.replacedFaces.emplace_back(tissueName, gone);
+    t->mesh = keepFaces(t->mesh, keep);
+    if (t->mesh.F.rows() == 0) tissues.erase(t);
+  }
+  // Each group's symmetry, which a bone joining it takes (a group agrees on it, core/anatomy.h).
+  std::map<std::string, bool> groupSymmetric;
+  for (const ReferenceTissue& t : tissues)
+    if (!t.group.empty()) groupSymmetric.emplace(t.group, t.symmetric);
   for (const ReferenceTissue& tissue : inFov.tissues) {
     if (std::find(represented.begin(), represented.end(), tissue.name) != represented.end()) continue;
-    const auto same = std::find_if(model.anatomy.tissues.begin(), model.anatomy.tissues.end(),
-                                   [&](const ReferenceTissue& x) { return x.name == tissue.name; });
     ReferenceTissue added = tissue;
-    added.group.clear();  // the reference's groups are OpenSim's bodies; a label is a tissue of its own
+    added.group.clear();  // the scan's groups are its own; the reference's are OpenSim's bodies
     added.symmetric = false;
-    if (same != model.anatomy.tissues.end())
+    if (added.kind == TissueKind::Bone)
+      for (const auto& [group, label] : options.groupLabels)
+        if (labelMatches(tissue.name, label) && groupSymmetric.count(group)) {
+          added.group = group;
+          added.symmetric = groupSymmetric.at(group);
+          break;
+        }
+    if (const auto same = named(tissue.name); same != tissues.end())
       *same = std::move(added);
     else
-      model.anatomy.tissues.push_back(std::move(added));
+      tissues.push_back(std::move(added));
     model.labelTissues[tissue.name] = {tissue.name};
   }
   return model;

@@ -87,12 +87,13 @@ TriMesh boneOf(const std::map<std::string, TriMesh>& meshes, const std::vector<s
   return all;
 }
 
-// `name`, which must be one of `bone`'s meshes (options.sacrum of the pelvis, ...).
-const TriMesh& partOf(const std::map<std::string, TriMesh>& meshes, const std::vector<std::string>& bone,
-                      const std::string& name, const std::string& what) {
-  if (std::find(bone.begin(), bone.end(), name) == bone.end())
-    throw UsageError("skeletonFromBoneMeshes: the " + what + " '" + name + "' is not one of its bone's meshes");
-  return meshes.at(name);
+// The union of `names`, each of which must be one of `bone`'s meshes (options.spine of the torso, ...).
+TriMesh partOf(const std::map<std::string, TriMesh>& meshes, const std::vector<std::string>& bone,
+               const std::vector<std::string>& names, const std::string& what, const std::string& source) {
+  for (const std::string& name : names)
+    if (std::find(bone.begin(), bone.end(), name) == bone.end())
+      throw UsageError("skeletonFromBoneMeshes: the " + what + " '" + name + "' is not one of its bone's meshes");
+  return boneOf(meshes, names, what, source);
 }
 
 // The femoral head facing the acetabulum and its sphere (header: Hip).
@@ -136,8 +137,8 @@ LumbarJoint fitLumbar(const TriMesh& spine, const TriMesh& sacrum, const Skeleto
   const MatrixX3d upper = pointsNearest(spine.V, sacrum, o.discReach);
   const MatrixX3d lower = pointsNearest(sacrum.V, spine, o.discReach);
   LumbarJoint j;
-  j.spineVertices = checkedCount(upper, o.spine, "lowest end plate (facing '" + o.sacrum + "')", source);
-  j.sacrumVertices = checkedCount(lower, o.sacrum, "base (facing '" + o.spine + "')", source);
+  j.spineVertices = checkedCount(upper, joined(o.spine), "lowest end plate (facing '" + o.sacrum + "')", source);
+  j.sacrumVertices = checkedCount(lower, o.sacrum, "base (facing '" + joined(o.spine) + "')", source);
   j.centre = (centroid(upper) + centroid(lower)) / 2;
   return j;
 }
@@ -146,7 +147,7 @@ LumbarJoint fitLumbar(const TriMesh& spine, const TriMesh& sacrum, const Skeleto
 void fitShoulder(ArmJoints& j, const Arm& arm, const TriMesh& scapulae, const SkeletonFromBoneMeshesOptions& o,
                  const std::string& humerusName, const std::string& source) {
   const MatrixX3d head = pointsNearest(arm.humerus.V, scapulae, o.glenoidReach);
-  j.headVertices = checkedCount(head, humerusName, "humeral head (facing '" + o.scapulae + "')", source);
+  j.headVertices = checkedCount(head, humerusName, "humeral head (facing '" + joined(o.scapulae) + "')", source);
   j.humeralHead = fitSphere(head);
 }
 
@@ -221,9 +222,9 @@ MeshSkeleton skeletonFromBoneMeshes(const std::map<std::string, TriMesh>& meshes
     return boneOf(meshes, names, what, source);
   };
   const TriMesh pelvis = bone(o.pelvis, "pelvis"), torso = bone(o.torso, "torso");
-  const TriMesh& sacrum = partOf(meshes, o.pelvis, o.sacrum, "sacrum");
-  const TriMesh& spine = partOf(meshes, o.torso, o.spine, "spine");
-  const TriMesh& scapulae = partOf(meshes, o.torso, o.scapulae, "rib cage and scapulae");
+  const TriMesh sacrum = partOf(meshes, o.pelvis, {o.sacrum}, "sacrum", source);
+  const TriMesh spine = partOf(meshes, o.torso, o.spine, "spine", source);
+  const TriMesh scapulae = partOf(meshes, o.torso, o.scapulae, "rib cage and scapulae", source);
   const Leg legs[2] = {{bone(o.femurLeft, "left femur"), bone(o.tibiaLeft, "left tibia"), bone(o.fibulaLeft, "left fibula")},
                        {bone(o.femurRight, "right femur"), bone(o.tibiaRight, "right tibia"), bone(o.fibulaRight, "right fibula")}};
   const Arm arms[2] = {{bone(o.humerusLeft, "left humerus"), bone(o.ulnaLeft, "left ulna"), bone(o.radiusLeft, "left radius"),

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <optional>
 
 namespace vesalius::rigging {
@@ -316,6 +317,28 @@ std::vector<meshing::RegionSurface> referenceRegions(const ReferenceAnatomy& ref
   return boneRegions(map, boneLabels, Label(bones.size() + 1), false, o, source, progress);
 }
 
+// The skeleton's torso meshes in `reference`: the options' as far as it holds them, and every other bone of
+// the torso's joint (a scan's labelled vertebrae, ribs or scapulae that take the place of OpenSim's one-mesh
+// spine and rib cage inside its field of view, patient/whole_model.h) with the torso, the spine and the
+// scapulae alike: the lumbar joint lies where the spine's meshes come nearest the sacrum and the shoulders
+// where the humeri come nearest the scapulae, so that bones farther away change neither.
+// A list with no mesh at all is left whole, for skeletonFromBoneMeshes to name what is missing.
+posing::SkeletonFromBoneMeshesOptions withTorsoOf(const ReferenceAnatomy& reference, posing::SkeletonFromBoneMeshesOptions o) {
+  std::set<std::string> names;
+  for (const ReferenceTissue& t : reference.tissues) names.insert(t.name);
+  const std::vector<std::string> named = o.torso;
+  for (const ReferenceTissue& t : reference.tissues)
+    if (t.kind == TissueKind::Bone && jointOfBody(t.group) == "torso" &&
+        std::find(named.begin(), named.end(), t.name) == named.end())
+      for (std::vector<std::string>* list : {&o.torso, &o.spine, &o.scapulae}) list->push_back(t.name);
+  for (std::vector<std::string>* list : {&o.torso, &o.spine, &o.scapulae}) {
+    const auto missing = [&](const std::string& n) { return !names.count(n); };
+    if (!std::all_of(list->begin(), list->end(), missing))
+      list->erase(std::remove_if(list->begin(), list->end(), missing), list->end());
+  }
+  return o;
+}
+
 }  // namespace
 
 BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const RigOptions& options,
@@ -371,7 +394,7 @@ BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::Skele
   Progress& p = progress ? *progress : none;
   std::map<std::string, TriMesh> byName;
   for (const ReferenceTissue& t : reference.tissues) byName.emplace(t.name, t.mesh);
-  const posing::MeshSkeleton bones = posing::skeletonFromBoneMeshes(byName, bonesOptions, source);
+  const posing::MeshSkeleton bones = posing::skeletonFromBoneMeshes(byName, withTorsoOf(reference, bonesOptions), source);
   BuiltRig built;
   built.rig.skeleton = bones.skeleton;
   built.femoralHeadRadiusLeft = bones.left.femoralHead.radius;

@@ -60,19 +60,9 @@ struct VirtualPatientOptions {
   // none: no completion. The caller's, not copied.
   const ReferenceAnatomy* fullBodyReference = nullptr;
   ReferenceCompletionOptions completion;
-  // The whole model (whole_model.h): the reference's bone groups placed on the patient's labels by the
-  // transfer (one map per group, seed 000 §8), then the bones that have a label of their own brought onto
-  // its shape, without an affine step of their own: the group's map keeps them where the muscles and the
-  // bones beyond the scan were carried.
-  std::vector<std::pair<std::string, std::string>> boneGroupLabels = defaultBoneGroupLabels();
-  std::vector<std::pair<std::string, std::string>> referenceBoneLabels = defaultReferenceBoneLabels();
-  BoneOntoLabelOptions boneRefinement = placedBones();
-
-  static BoneOntoLabelOptions placedBones() {
-    BoneOntoLabelOptions o;
-    o.affineTargets = 0;
-    return o;
-  }
+  // The whole model (whole_model.h); its groupLabels also name the labels the transfer's per-bone
+  // registration places each reference bone group on (seed 000 §8).
+  WholeModelOptions whole;
 };
 
 struct FittedOrgan {
@@ -110,6 +100,14 @@ struct VirtualPatient {
 void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                const VirtualPatientOptions& options, bool withReference, bool posed,
                                const std::string& scanSource, const std::string& organsSource);
+
+// The stages buildVirtualPatient will run on these inputs, by the names it begins them with on its
+// progress and reports them under (VirtualPatient::stageSeconds), each with its relative cost (its wall
+// time on the shipped CT): a command's progress plan (core/progress.h). withReference: whether
+// options.fullBodyReference will be set (a caller plans before it reads the reference).
+std::vector<std::pair<std::string, double>> virtualPatientStages(const LabelMap* organs,
+                                                                 const std::vector<OrganTemplate>& templates,
+                                                                 const VirtualPatientOptions& options, bool withReference);
 
 // ct: a CT in HU. organs: its organ/bone segmentation on the same grid, or null. Throws BadInput naming
 // `scanSource` for a scan with no body, naming `organsSource` for a label map on another grid or one in

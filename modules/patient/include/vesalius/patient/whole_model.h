@@ -5,11 +5,15 @@
 //    (bone_onto_label.h). Its group was already placed on the labels by the transfer's per-bone
 //    registration (transfer::AnatomyTransferOptions::boneTargets), so the muscles and the bones beyond
 //    the field of view follow it; here the mesh takes the label's shape.
+//  - Reference bones that labels show bone by bone: OpenSim gives the spine, the rib cage with the
+//    scapulae and the skull as one mesh each, where the organ map has a label per vertebra and per rib.
+//    Inside the field of view the labels' surfaces take their place: the reference mesh keeps only its
+//    faces wholly beyond the scan (`replacedInsideScan`).
 //  - Every other tissue of the patient's anatomy (the fitted organs, other bones and muscles of the labels)
-//    is added under its label's name; a reference tissue of the same name gives way to it.
+//    is added under its label's name; a reference tissue of the same name gives way to it. A bone of the
+//    labels that `groupLabels` pairs with an OpenSim body joins that body's group (the sacrum the pelvis,
+//    vertebrae and ribs the torso), so that a rig of the model moves it with that body's joint.
 //  - The skin is the completed skin (the scan's skin where the scan sees skin, the reference's beyond).
-// Not yet: the reference's spine and rib cage are one mesh each (OpenSim's), which the patient's own
-// vertebrae and ribs overlap inside the field of view.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -31,6 +35,43 @@ inline std::vector<std::pair<std::string, std::string>> defaultReferenceBoneLabe
   return {{"l_pelvis", "hip_left"}, {"r_pelvis", "hip_right"}, {"l_femur", "femur_left"}, {"r_femur", "femur_right"}};
 }
 
+// Rajagopal's trunk meshes that TotalSegmentator's labels show bone by bone, and the labels that show them
+// (a name ending in '*' is a prefix).
+inline std::vector<std::pair<std::string, std::string>> defaultReferenceBonesReplacedInsideScan() {
+  return {{"hat_spine", "vertebrae_*"}, {"hat_ribs_scap", "rib_*"}, {"hat_skull", "skull"}};
+}
+
+// Rajagopal's bone groups (OpenSim's bodies) and the TotalSegmentator labels that show them; a name
+// ending in '*' is a prefix.
+inline std::vector<std::pair<std::string, std::string>> defaultBoneGroupLabels() {
+  return {{"pelvis", "hip_left"},   {"pelvis", "hip_right"},   {"pelvis", "sacrum"},     {"femur_l", "femur_left"},
+          {"femur_r", "femur_right"}, {"torso", "vertebrae_*"}, {"torso", "rib_*"},       {"torso", "sternum"},
+          {"torso", "costal_cartilages"}, {"torso", "scapula_*"}, {"torso", "clavicula_*"}, {"skull", "skull"}};
+}
+
+// Whether label `name` is `pattern` (a name ending in '*' is a prefix).
+bool labelMatches(const std::string& name, const std::string& pattern);
+
+struct WholeModelOptions {
+  // Reference tissue → label: the tissue brought onto the label's shape; pairs whose tissue or label is
+  // missing are skipped.
+  std::vector<std::pair<std::string, std::string>> boneLabels = defaultReferenceBoneLabels();
+  // OpenSim body → label: the bone group a bone of the labels joins (and the transfer's per-bone targets,
+  // boneGroupTargets).
+  std::vector<std::pair<std::string, std::string>> groupLabels = defaultBoneGroupLabels();
+  // Reference tissue → label: inside the scan the labels' tissues take the place of the tissue's faces.
+  std::vector<std::pair<std::string, std::string>> replacedInsideScan = defaultReferenceBonesReplacedInsideScan();
+  // The bones are placed by the transfer's per-bone registration: no affine step of their own, so the
+  // group's map keeps them where the muscles and the bones beyond the scan were carried.
+  BoneOntoLabelOptions bones = placedBones();
+
+  static BoneOntoLabelOptions placedBones() {
+    BoneOntoLabelOptions o;
+    o.affineTargets = 0;
+    return o;
+  }
+};
+
 struct RegisteredBone {
   std::string tissue, label;
   BoneOntoLabel registration;
@@ -42,22 +83,16 @@ struct WholeModel {
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<RegisteredBone> bones;
+  // Each reference tissue that the labels replaced inside the scan, and how many of its faces went (a
+  // tissue whose faces all went is gone from the model).
+  std::vector<std::pair<std::string, long>> replacedFaces;
 };
 
 // completed: the reference completed into the patient; inFov: the patient's anatomy inside the field of
 // view (its tissues named by their labels); organs: the organ map (null: the completed reference alone,
-// with the completed skin). boneLabels: reference tissue → label, pairs whose tissue or label is missing
-// are skipped. Throws what registerBoneOntoLabel throws.
+// with the completed skin). Throws what registerBoneOntoLabel throws.
 WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy& inFov, const LabelMap* organs,
-                      const std::vector<std::pair<std::string, std::string>>& boneLabels,
-                      const BoneOntoLabelOptions& options, const std::string& organsSource);
-
-// Rajagopal's bone groups (OpenSim's bodies) and the TotalSegmentator labels that show them; a name
-// ending in '*' is a prefix.
-inline std::vector<std::pair<std::string, std::string>> defaultBoneGroupLabels() {
-  return {{"pelvis", "hip_left"},    {"pelvis", "hip_right"},   {"pelvis", "sacrum"}, {"femur_l", "femur_left"},
-          {"femur_r", "femur_right"}, {"torso", "vertebrae_*"}, {"torso", "rib_*"}};
-}
+                      const WholeModelOptions& options, const std::string& organsSource);
 
 // For each bone group of `reference` (ReferenceTissue::group) that `groupLabels` pairs with labels that
 // have voxels in `organs`, `pointsPerGroup` points spread over those labels' boundary inside the scan: the

@@ -87,8 +87,8 @@ struct SkeletonFromBoneMeshesOptions {
   std::vector<std::string> radiusLeft{"radius_lv"}, radiusRight{"radius_rv"};
   std::vector<std::string> handLeft = openSimHand("l"), handRight = openSimHand("r");
   std::string sacrum = "sacrum";   // the pelvis mesh whose vertex mean sets the pelvis's z
-  std::string spine = "hat_spine";  // the torso mesh that meets the sacrum
-  std::string scapulae = "hat_ribs_scap";  // the torso mesh that holds the glenoids
+  std::vector<std::string> spine{"hat_spine"};  // the torso meshes whose union meets the sacrum
+  std::vector<std::string> scapulae{"hat_ribs_scap"};  // the torso meshes whose union holds the glenoids
   double acetabulumDistance = 6.0; // mm: femoral head vertices this close to the pelvis
   double condyleReach = 40.0;      // mm: distal femur vertices this close to the tibia
   double malleolusTip = 2.0;       // mm: malleolus vertices this close to their bone's distal end

@@ -65,7 +65,9 @@ BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const Ri
 BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBonesOptions& bones,
                            const RigOptions& options, const std::string& source, Progress* progress = nullptr);
 
-// reference: OpenSim's bone meshes (tissues grouped by OpenSim body) in a closed skin, mm LPS.
+// reference: OpenSim's bone meshes (tissues grouped by OpenSim body) in a closed skin, mm LPS. Bones of
+// the torso's joint that `bones` does not name (a patient's labelled vertebrae and ribs in a virtual
+// patient's model) join its torso, spine and scapulae; names it holds no mesh of are left out.
 BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::SkeletonFromBoneMeshesOptions& bones,
                           const RigOptions& options, const std::string& source, Progress* progress = nullptr);
 
