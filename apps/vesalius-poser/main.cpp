@@ -1,5 +1,5 @@
 // vesalius-poser: plays a motion on an anatomy rigged by `vesalius rig`, the skin translucent over the
-// tissues, skinned live by LBS, DQS or CoR (issue 6; seed 001 §3.5, §4; docs/cli.md "vesalius-poser").
+// tissues, skinned live by LBS, DQS or CoR (issue 6; Sujar et al. 2018, §3.5, §4; docs/cli.md "vesalius-poser").
 #include "poser_app.h"
 
 #include "vesalius/core/error.h"

@@ -1,5 +1,5 @@
 // What the poser shows and how keys, slider and timer change it: the frame of the motion, the skinning
-// method (LBS, DQS or CoR, seed 001 §3.5), playing or paused. Every change re-skins the shown frame at
+// method (LBS, DQS or CoR, Sujar et al. 2018, §3.5), playing or paused. Every change re-skins the shown frame at
 // once through the session's skinners (built once, posing/rig_poser.h) and moves the points of the
 // existing actors; the status line gives the method, the frame and the time that skinning and carrying
 // the meshes took.

@@ -1,4 +1,4 @@
-// `vesalius fit` on a real scan (seed 002 §4.1, issue 4's real-scan validation): the Visible Human gluteus
+// `vesalius fit` on a real scan (Wang et al. 2021, §4.1, issue 4's real-scan validation): the Visible Human gluteus
 // medius template (testdata/muscles) fitted to the test CT's gluteus_medius_left label, attached to the
 // hip bone where the CT's muscle label touches it (§4.1.2: the insertion; `surface --shared --touching`
 // gives the hip's interface with the muscle, and its vertices within 5 mm of the placed template are

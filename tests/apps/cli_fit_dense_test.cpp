@@ -4,7 +4,7 @@
 // size at 512, 8,192 and 32,768 triangles. TetGen keeps every surface triangle, so without coarsening the
 // dense ones would give many times the tet target. Each is fitted to 300 markers on the brain's boundary
 // with two refits (fit/refit.h; the fit alone stalls where its tets are crushed, at 0.6-1.1 mm here); every
-// round's tets must stay within twice the target, the markers be met to the 0.5 mm of seed 002's
+// round's tets must stay within twice the target, the markers be met to the 0.5 mm of Wang et al.'s
 // validation, and the template's own triangles be carried to --embed-out. Between the markers (about
 // 17 mm apart on the brain's envelope) the surface is free; it must still follow the brain's whole boundary to
 // within two voxels. Run at the coarse target of 5,000 tets; the defaults' 20,000, the

@@ -1,5 +1,5 @@
 // `vesalius fit` of OpenSim's left hip bone to the test CT's hip_left label, un-attached (issue 4,
-// validation 5; seed 002 §3.6 fits free organs the same way). The template
+// validation 5; Wang et al. 2021, §3.6, fits free organs the same way). The template
 // (testdata/skeleton-opensim/Geometry/l_pelvis.vtp) is not a closed 2-manifold, so fit closes it by its
 // winding number first (meshing/closed_surface.h) and says so; it is in OpenSim's body frame and in
 // metres, which the placement (a similarity from principal axes, then ICP) has to undo. 150 ICP markers are

@@ -2,7 +2,7 @@
 // vertices, 596 tets) scaled to about 195 mm is the template; the "patient" is the same liver stretched by
 // 1.2, 0.85 and 1.1 along rotated axes, rotated and moved. A uniform stretch is a constant plastic strain,
 // so the fit can meet the markers exactly: ICP markers spread over the patient's surface and five landmark
-// pairs (by label) must be met to well under 0.5 mm (seed 002 §4: "0.5 mm or better"), the volume must grow
+// pairs (by label) must be met to well under 0.5 mm (Wang et al. 2021, §4: "0.5 mm or better"), the volume must grow
 // by the stretch's determinant and the plastic stretches must be the three stretch factors. A surface
 // template (a sphere) is tetrahedralized and carries an embedded surface (§4.3); a bone gives attachments
 // (§4.1.2). Bad inputs give one line and exit 3; an existing output is kept without --force.
@@ -312,7 +312,7 @@ TEST_F(CliFit, SurfaceTemplateIsTetrahedralizedAndCarriesAnEmbeddedSurface) {
                  std::to_string(farthestFrom(surfaceOf(fitted.V, tetBoundary(fitted.T)), carried.V)));
 }
 
-// The elastic baseline (seed Fig. 2) changes no plastic strain: every tet keeps the placement's scale.
+// The elastic baseline (Wang et al. 2021, Fig. 2) changes no plastic strain: every tet keeps the placement's scale.
 TEST_F(CliFit, ElasticBaselineKeepsThePlacementsScale) {
   const std::string out = fresh("sphere_elastic.vtu"), report = fresh("sphere_elastic.json");
   std::vector<std::string> args = fitArgs(out, {"--method", "elastic", "--target-tets", "600", "--report", report});

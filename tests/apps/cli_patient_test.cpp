@@ -73,7 +73,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     EXPECT_TRUE(fs::exists(out + "/" + m["label_tissues"][name][0].get<std::string>()));
   }
 
-  // The fitted liver against the label it was fitted to (seed 002's 0.5 mm at the markers; the Dice
+  // The fitted liver against the label it was fitted to (Wang et al.'s 0.5 mm at the markers; the Dice
   // 0.90 and one voxel over the whole boundary).
   const nlohmann::json& liver = m["organ_fits"]["liver"];
   EXPECT_LT(liver["error_after_mm"]["mean"].get<double>(), 0.5);
@@ -153,7 +153,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
   }
 
   // Posable: the whole model's rig, its hips' joints named (OpenSim's bodies), the rig posed by `vesalius
-  // pose`, the posed model as seed 001 claims.
+  // pose`, the posed model as Sujar et al. 2018 claims.
   EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
   EXPECT_EQ(m["hip_joints"]["right"], "femur_r");
   EXPECT_EQ(m["rig"]["joints"].get<int>(), 14);
@@ -226,7 +226,7 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     EXPECT_GE(dice, 0.90) << label;
   }
   // Frame 400 of the shipped CMU walk on the whole model's rig (CMU's names onto OpenSim's bodies), the left
-  // elbow flexed sharply: seed 001's claims, no inverted tet, the skin's volume within 1 %, no tissue vertex
+  // elbow flexed sharply: Sujar et al.'s claims, no inverted tet, the skin's volume within 1 %, no tissue vertex
   // left outside.
   const std::string walk = fresh("demo_frame_400");
   const CommandResult frame = runVesalius({"pose", "--anatomy", out + "/rig", "--motion",
@@ -255,7 +255,7 @@ TEST(CliPatient, PosedByAFrameOfAMotion) {
   const nlohmann::json pose = readJson(out + "/report.json")["metrics"]["pose"];
   std::cout << "frame 400: " << pose.dump() << '\n';
   EXPECT_EQ(pose["motion"]["frame"], 400);
-  // Seed 001's claims.
+  // Sujar et al.'s claims.
   EXPECT_EQ(pose["inverted_tets"].get<long>(), 0);
   EXPECT_LT(std::abs(pose["skin_volume_change_pct"].get<double>()), 1.0);
   EXPECT_EQ(pose["tissue_vertices_left_outside"].get<long>(), 0);

@@ -4,7 +4,7 @@
 // stay within bounds, and the tet vertices of a bone move rigidly with it. Then the quality of every 25th
 // frame of the whole motion (issue 6) by each method, from `pose --quality-only`'s quality.tsv, with the
 // volume restored and the inverted or flat tets repaired (the defaults) and, for comparison, without the
-// repair (--no-untangle) and without either (the seed's bare skinning).
+// repair (--no-untangle) and without either (Sujar et al.'s bare skinning).
 #include "run_command.h"
 
 #include "vesalius/core/mesh_measures.h"
@@ -51,7 +51,7 @@ const std::string& rigDir() {
   return d;
 }
 
-// One pose at kFrame; `bare`: the seed's skinning, without the volume restoration and the repair.
+// One pose at kFrame; `bare`: Sujar et al.'s skinning, without the volume restoration and the repair.
 std::string pose(const std::string& method, bool bare = false) {
   const std::string out = dir(method + (bare ? "-bare" : ""));
   std::vector<std::string> args{"pose", "--anatomy", rigDir(), "--motion", kData + "/motion/01_01.bvh",
@@ -145,7 +145,7 @@ void expectLbsDqsAndCorAtAFrameOfTheCmuMotion() {
   EXPECT_LT(lbs.worstBoneLength, 1e-6);
   EXPECT_LT(dqs.worstBoneLength, 1e-6);
   EXPECT_LT(cor.worstBoneLength, 1e-6);
-  // The seed's bare LBS collapses the bent elbows, knees and hips (measured -11.45 %); DQS keeps most of it
+  // Sujar et al.'s bare LBS collapses the bent elbows, knees and hips (measured -11.45 %); DQS keeps most of it
   // (measured -3.13 %: a crouch, one of the frames where bare skinning misses the issue's 3 %).
   EXPECT_LT(bareLbs.volumeChange, -0.05);
   EXPECT_LT(std::abs(bareDqs.volumeChange), std::abs(bareLbs.volumeChange) / 3);
@@ -187,7 +187,7 @@ std::vector<QualityRow> readQuality(const std::string& out, const std::string& m
 }
 
 // What follows skinning: the volume restoration and the repair (the defaults), the restoration only, or
-// neither (the seed's bare skinning).
+// neither (Sujar et al.'s bare skinning).
 enum class AfterSkinning { restoreAndUntangle, restoreOnly, nothing };
 
 // Every 25th frame of the whole CMU motion, quality only (no meshes written).
@@ -272,7 +272,7 @@ void expectTheRepairTakesEveryTetLeftInverted(const std::vector<QualityRow>& cor
   EXPECT_GT(t.inverted, 0);  // measured 72 (frame 1250; in 95 frames), bare CoR 67
 }
 
-// The seed's bare skinning (neither restored nor repaired) against the default: the same skinning (the
+// Sujar et al.'s bare skinning (neither restored nor repaired) against the default: the same skinning (the
 // restored runs report the skinned tets' volume change before the restoration), and the skin volume it
 // loses in the deepest crouches, beyond the issue's 3 %.
 void expectBareSkinningLosesTheCrouches(const std::vector<QualityRow>& restored, const std::string& method) {

@@ -92,8 +92,8 @@ TEST(CliReferenceOrgans, InsideTheReferenceSkinAndOffItsBones) {
   std::cout << "organ and muscle vertices outside the reference's skin: " << outside << " of " << all << '\n';
   EXPECT_GT(all, 0);
   EXPECT_EQ(outside, 0);
-  // Interpenetration of each organ or muscle with each bone (no reference pair: measured against 0); seed
-  // 000's 1 mm is not met yet (docs/virtual-patient.md, "Not yet").
+  // Interpenetration of each organ or muscle with each bone (no reference pair: measured against 0);
+  // Dicko et al.'s 1 mm is not met yet (docs/virtual-patient.md, "Not yet").
   ReferenceAnatomy bones = reference;
   bones.tissues.erase(std::remove_if(bones.tissues.begin(), bones.tissues.end(), isSoft), bones.tissues.end());
   transfer::AnatomyRulesOptions options;

@@ -1,4 +1,4 @@
-// Issue 6, `vesalius rig --labels`: the test CT's bones rigged from their labels (seed 001 §3.1-3.3) and both
+// Issue 6, `vesalius rig --labels`: the test CT's bones rigged from their labels (Sujar et al. 2018, §3.1-3.3) and both
 // hips flexed by 30° (`pose --angles`). Each bone's posed label is compared with its original label moved
 // by the bone's rigid map (Dice >= 0.9), by LBS, DQS and CoR. The rig itself: femur frames whose x axes are
 // the pelvis's left-right axis made orthogonal to the femur, no inverted tets, bone vertices of weight 1 on

@@ -1,5 +1,5 @@
 // Issue 6, `vesalius rig --reference`: the full-body reference (MakeHuman's neutral skin with Rajagopal's
-// OpenSim bones placed inside it, `reference full-body`) rigged with its real bone meshes (seed 001
+// OpenSim bones placed inside it, `reference full-body`) rigged with its real bone meshes (Sujar et al. 2018,
 // §3.1-3.3), then the left hip flexed by 30° and the left shoulder by 40° (`pose --angles 'femur_l=-30,0,0;
 // humerus_l=-40,0,0'`). The rig: weights in [0, 1] summing to 1 at every vertex, no inverted tet at rest,
 // joints and frames those of skeletonFromBoneMeshes on the placed meshes (pelvis, legs, torso, arms), hip

@@ -87,7 +87,7 @@ TEST(CliTetmesh, TwoLabelsOfTheCtGiveTwoRegions) {
 
 // A ball of soft tissue (label 1) around a ball of bone (label 5), 2 mm voxels, with an air pocket (label 0)
 // in the soft tissue: --body meshes the union, holes filled, as the outer region with the bone nested
-// inside it (seed 001 §3.2).
+// inside it (Sujar et al. 2018, §3.2).
 TEST(CliTetmesh, BodyWithABoneInside) {
   long pocketVoxels = 0;  // air inside, which the body keeps
   const LabelMap map = softAndBone({30, 30, 30}, [&](const Eigen::Vector3d& p) {
@@ -184,7 +184,7 @@ TEST(CliTetmesh, BoneReachingTheBodySurfaceKeepsItsVolume) {
   EXPECT_EQ(runVesalius({"tetmesh", "--surface", labels, "--shared", "--out", out}).exitCode, 2);
 }
 
-// A map longer than seed 001's cap (250 voxels along L) is resampled before meshing and keeps its volume.
+// A map longer than Sujar et al.'s cap (250 voxels along L) is resampled before meshing and keeps its volume.
 TEST(CliTetmesh, LabelMapOverTheSizeCapIsResampled) {
   GridGeometry g;
   g.size = {300, 30, 30};

@@ -1,4 +1,4 @@
-// `vesalius reference torso` and `vesalius transfer` on the test CT (seed 000): the torso reference built
+// `vesalius reference torso` and `vesalius transfer` on the test CT (Dicko et al. 2013): the torso reference built
 // from TotalSegmentator's labels, carried into its own body, into the same body with 8 mm more fat, and
 // into a wider, flatter body made from the same scan. The rules as numbers: tissues inside the target
 // (R5, R6), the same bones under extra fat (R3), long bones straight (R1), the trunk symmetric (R2), a
@@ -143,7 +143,7 @@ TEST(CliTransfer, TheSameBodyGivesTheSameAnatomy) {
   expectNoneOutsideThroughTheSkin(report["metrics"]);
 }
 
-// R3 as the seed states it: the same body with more fat has the same skeleton. The lean body is the
+// R3 as Dicko et al. 2013 states it: the same body with more fat has the same skeleton. The lean body is the
 // test CT's body surfaced anew; the fat one is its mask dilated by 8 mm, surfaced the same way. The fat
 // layer, the distance from each reference skin vertex out to the fat body, is what a forest would measure
 // on such a scan (a dilation on 3 mm voxels is 6.9 mm at the median, not 8); the transfer is given it per
@@ -279,8 +279,8 @@ TEST(CliTransfer, AWiderFlatterBody) {
   expectNoneOutsideThroughTheSkin(m);
 }
 
-// The full-body reference (MakeHuman's neutral skin with Rajagopal's OpenSim bones placed inside by seed
-// 004, then each moved inside the skin) written to dir/reference.
+// The full-body reference (MakeHuman's neutral skin with Rajagopal's OpenSim bones placed inside by the
+// GRAPP 2012 paper's skeleton alignment, then each moved inside the skin) written to dir/reference.
 ReferenceAnatomy fullBodyReference(const std::string& dir) {
   const std::string body = std::string(VESALIUS_TESTDATA) + "/body/";
   const CommandResult made = runVesalius({"reference", "full-body", "--skin", body + "shapes/mh_neutral_body.obj",
@@ -416,7 +416,7 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const ReferenceAnatomy reference = fullBodyReference(dir);
   EXPECT_EQ(reference.tissues.size(), 81u);
   EXPECT_EQ(reference.points.size(), 288u + 21u);  // muscle path points, joint centres
-  // MakeHuman's uv come with the skin, so the fat editor can write its texture (seed 000 §5-6): 0.4 of the
+  // MakeHuman's uv come with the skin, so the fat editor can write its texture (Dicko et al. 2013, §5-6): 0.4 of the
   // 50 mm maximum over the pelvis, nothing where no bone was given an amount.
   EXPECT_EQ(reference.skin.FUV.rows(), reference.skin.F.rows());
   { std::ofstream(dir + "/amounts.json") << R"({"pelvis": 0.4})"; }
@@ -440,7 +440,7 @@ TEST(CliTransfer, FullBodyIntoTheThinBody) {
   const auto [hands, forearms] = handAndForearmSkinErrors(reference, dir, makeHumanShape(thin));
   EXPECT_LT(hands, 5.0);
   EXPECT_LT(forearms, 12.0);
-  // Rules R5, R6 and the field's folds (seed 000 §7-8): no folded cell, fixed shells included (the final
+  // Rules R5, R6 and the field's folds (Dicko et al. 2013, §7-8): no folded cell, fixed shells included (the final
   // field's fixed cells at folds are freed); none of the 30,751 tissue vertices outside the target's skin
   // (what the bone maps leave outside is bent inside); no vertex a voxel or more inside the reference skin
   // pushed out of the target's.

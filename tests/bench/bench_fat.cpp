@@ -1,4 +1,4 @@
-// Fat forest (seed 000 §5) against the exact Euclidean distance map of the skin (ITK's Maurer filter,
+// Fat forest (Dicko et al. 2013, §5) against the exact Euclidean distance map of the skin (ITK's Maurer filter,
 // linear time, no trees) on the same grid, in the same run: the forest keeps a path and a root per fat
 // voxel, the distance map only a number. Two workloads: the test CT's tissue classes (122 x 101 x 112,
 // 3 mm) and a synthetic elliptic body on a 512 x 512 x 60 grid (0.977 x 0.977 x 2 mm, the DICOM

@@ -1,4 +1,4 @@
-// Benchmarks of the plastic-strain fitter (seed 002) on the SOFA liver template tetrahedralized at about
+// Benchmarks of the plastic-strain fitter (Wang et al. 2021) on the SOFA liver template tetrahedralized at about
 // 35k tets (the paper's hand-muscle size) with 150 ICP markers:
 //   1. one search-direction solve, Woodbury (eq. 14) against conjugate gradients on the same H (Table 1);
 //   2. a whole fit from the placed template to markers on a known plastic deformation of it.
@@ -107,7 +107,7 @@ void searchDirection() {
                "Woodbury: %.2f s of CPU; factor L %.2f s, setup (Z (L²)⁺ Zᵀ and the capacitance LU) %.2f s with %ld page faults, "
                "refined solve %.2f s; load %.1f\n",
                cpuWoodbury, tFactor, tSetup, setupFaults, tSolve, bench::loadAverage());
-  // Seed 002 factors B "once for the entire optimization" (§3.4): a direction after the first costs the
+  // Wang et al. 2021 factors B "once for the entire optimization" (§3.4): a direction after the first costs the
   // Woodbury time less the factor of L, the second ratio.
   std::printf("| one search direction, %ld tets (6#T = %ld), %ld constraint rows | %.1f s | %.1f s (%d iterations, "
               "residual %.1e, %.1e from Woodbury's) | %.2f s (%.2f s with L factored) | %.0f× (%.0f×) |",

@@ -1,13 +1,13 @@
-// Benchmarks of posing (seed 001 §3.3-3.5) on the four-bone bar of the tests (tests/posing) refined to
-// about 700k tet vertices and 4M tets, the size of the seed's models (Fig. 6: below 8·10⁵ vertices and
+// Benchmarks of posing (Sujar et al. 2018, §3.3-3.5) on the four-bone bar of the tests (tests/posing) refined to
+// about 700k tet vertices and 4M tets, the size of Sujar et al.'s models (Fig. 6: below 8·10⁵ vertices and
 // 3.5·10⁶ tets):
 //   1. bone weights (one factorization, four right-hand sides);
 //   2. CoR centres, clustered against brute force; brute force is timed on an even sample of the vertices
 //      (its cost per vertex does not depend on which) and scaled to the whole mesh;
-//   3. mapping 1.3M tissue points into the tet mesh (the seed's §3.4 count) and carrying them posed, against
+//   3. mapping 1.3M tissue points into the tet mesh (Sujar et al.'s §3.4 count) and carrying them posed, against
 //      the previous method in the same run: each point queried in the given order, and the whole carry
 //      loop of the previous code;
-//   4. one skinning frame, tet mesh plus tissue points, with LBS, DQS and CoR (the seed's Table 2 compares
+//   4. one skinning frame, tet mesh plus tissue points, with LBS, DQS and CoR (Sujar et al.'s Table 2 compares
 //      their rates), against the previous per-vertex kernels (kept below as the baseline);
 //   5. CoR centres again with many bones (the MakeHuman rig has 50): the bar at 3 cells per unit with its
 //      bone cores cut into pieces, 26 bones, so that a vertex feels many bone pairs.
@@ -203,7 +203,7 @@ struct Embedded {
 
 Embedded mapping(const test::BoneBar& bar) {
   // Tissue points spread over the bar's box grown by 0.1 on every side, so that about 5 % fall outside
-  // (the seed met 4.6 %).
+  // (Sujar et al. met 4.6 %).
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> x(-0.1, 48.1), yz(-0.1, 8.1);
   MatrixX3d P(1300000, 3);

@@ -1,7 +1,7 @@
 // Tetrahedralizing a liver at about 50k tets: the full method (TetGen with quality and volume bounds, then
 // dihedral smoothing) against TetGen's bare constrained Delaunay tetrahedralization of the same surface (no
 // refinement, no optimization) in the same run. Prints one markdown table row each. Two livers: the SOFA
-// template (274 triangles, as the fitting of seed 002 uses it) and the test CT's liver label surface
+// template (274 triangles, as the fitting of Wang et al. 2021 uses it) and the test CT's liver label surface
 // (27,144 triangles), which cannot go as low as 50k tets without coarsening the surface.
 //
 //   build/tests/bench/bench_tetmesh

@@ -1,5 +1,5 @@
-// Benchmark of the Laplace interpolation of seed 000 §7: multigrid-preconditioned CG (one field, and the
-// three components of a displacement in one 3-wide solve) and plain V-cycles against the seed's baseline,
+// Benchmark of the Laplace interpolation of Dicko et al. 2013, §7: multigrid-preconditioned CG (one field, and the
+// three components of a displacement in one 3-wide solve) and plain V-cycles against Dicko et al.'s baseline,
 // Jacobi-preconditioned CG (Eigen's CG with its default preconditioner), on the same grid, boundary values
 // and relative residual 1e-8, in the same run.
 // The domain is body-like: the ellipsoid inscribed in the grid (2 voxels of margin) is Free, a shell
@@ -8,7 +8,7 @@
 // Times are wall clock; CPU time (both threads) is given too because the machine is shared, with the
 // 1-minute load average before and after each grid's row. Jacobi-CG is run for the first field only:
 // "3 CG" is three times that solve (each component's own CG would take about as many iterations).
-// Usage: bench_transfer [grid ...], each grid 64, 128, half (155×420×71) or paper (the seed's
+// Usage: bench_transfer [grid ...], each grid 64, 128, half (155×420×71) or paper (Dicko et al.'s
 // 309×839×142); default 64 128.
 #include "bench_support.h"
 

@@ -1,7 +1,7 @@
-// Benchmark of whole anatomy transfers (seed 000; issue 7 asks for "a whole transfer under 2 min" with the
+// Benchmark of whole anatomy transfers (Dicko et al. 2013; issue 7 asks for "a whole transfer under 2 min" with the
 // Laplace solve's ratio against plain CG in the same run). Each case runs `vesalius transfer` twice, back to
 // back: its two Laplace fields solved by the shipped multigrid-preconditioned CG (`--laplace-solver mg`) and
-// by the seed's baseline, Jacobi-preconditioned CG (`--laplace-solver cg`), both to the relative residual
+// by Dicko et al.'s baseline, Jacobi-preconditioned CG (`--laplace-solver cg`), both to the relative residual
 // 1e-8. The program is timed as a user runs it: wall time, and CPU time of all its threads because the
 // machine is shared (1-minute load average before and after each case). Stage times come from its
 // `--report` ("checks": the report's rules as numbers, R1, R2, R5, R6 and the Jacobian), one column per stage

@@ -1,4 +1,4 @@
-// The fat editor on a reference anatomy (bone_fat_amounts.h, seed 000 §6) on synthetic bodies: an
+// The fat editor on a reference anatomy (bone_fat_amounts.h, Dicko et al. 2013, §6) on synthetic bodies: an
 // elongated skin with a two-bone "pelvis" group at one end, a "skull" at the other and an organ between.
 // The editor promises thickness = maxThicknessMm · Σ_j w_j · amount_j with weights that are a partition of
 // unity in [0, 1]: equal amounts give that thickness everywhere, the thickness is linear in the amounts

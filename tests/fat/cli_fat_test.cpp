@@ -507,7 +507,7 @@ TEST(CliFatErode, BadThicknessAndMissingUvAreOneLineErrors) {
   expectContains(runVesalius({"fat", "texture", "--help"}).out, "vesalius fat texture --skin");
 }
 
-// The full-body reference (MakeHuman's neutral skin, Rajagopal's OpenSim bones placed by seed 004) with
+// The full-body reference (MakeHuman's neutral skin, Rajagopal's OpenSim bones placed by the GRAPP 2012 paper's skeleton alignment) with
 // MakeHuman's uv atlas on its skin: base.obj's "body" group holds the shapes' quads in the same order.
 // Built once per test process, in folders named after the test that builds it: ctest runs each test in
 // its own process, two at a time, and two processes writing one folder read each other's half-written files.

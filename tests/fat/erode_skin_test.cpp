@@ -1,4 +1,4 @@
-// Erosion of a skin surface by the fat thickness (seed 000 §5): spheres and ellipsoids against their
+// Erosion of a skin surface by the fat thickness (Dicko et al. 2013, §5): spheres and ellipsoids against their
 // offsets in closed form, a thin plate that folds without the limiter, the MakeHuman thin body (fingers,
 // ears) by uniform and varying thickness, and paths of a forest under a spherical shell.
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// FatForest (seed 000 §5) against thicknesses known in closed form: flat and tilted slabs, a spherical
+// FatForest (Dicko et al. 2013, §5) against thicknesses known in closed form: flat and tilted slabs, a spherical
 // shell, the exact 26-neighbour path length from one source, and fat that touches no skin.
 #include "vesalius/core/error.h"
 #include "vesalius/fat/fat_forest.h"

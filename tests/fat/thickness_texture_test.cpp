@@ -1,4 +1,4 @@
-// The thickness texture (seed 000 §3, §5): a linear field on a plane chart reproduced texel by texel, the
+// The thickness texture (Dicko et al. 2013, §3, §5): a linear field on a plane chart reproduced texel by texel, the
 // harmonic fill of the empty texels, the MakeHuman body's own uv atlas read back at its vertices, and bad
 // input.
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// Bone attachments (seed 002 §4.1.2): on a placed box template and a sloping bone sheet below it, exactly
+// Bone attachments (Wang et al. 2021, §4.1.2): on a placed box template and a sloping bone sheet below it, exactly
 // the bone vertices within the radius of the placed surface are attached (checked against a brute-force
 // distance), each material point lies on the template's rest surface, and the placed material point is
 // the bone vertex's closest surface point.

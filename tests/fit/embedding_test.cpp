@@ -1,4 +1,4 @@
-// Surface embedding (seed 002 §4.3): a surface inside (and a little outside) a box tet mesh follows an
+// Surface embedding (Wang et al. 2021, §4.3): a surface inside (and a little outside) a box tet mesh follows an
 // affine deformation of the box exactly, keeps its triangles, uv and attributes, and a surface through
 // tet-mesh vertices lands on their fitted positions for any deformation.
 #include "vesalius/fit/embedding.h"

@@ -1,4 +1,4 @@
-// J = dx/ds of the equilibrium (seed 002 eq. 10) against finite differences of re-solved equilibria,
+// J = dx/ds of the equilibrium (Wang et al. 2021, eq. 10) against finite differences of re-solved equilibria,
 // attached (springs) and un-attached (rigid gauge).
 #include "vesalius/fit/equilibrium_jacobian.h"
 

@@ -1,4 +1,4 @@
-// Seed 002 Fig. 21: a known smooth anisotropic plastic field on a real template, its equilibrium shape
+// Wang et al. 2021, Fig. 21: a known smooth anisotropic plastic field on a real template, its equilibrium shape
 // sampled by markers, and the fit from the undeformed template must find both the shape and the field.
 #include "vesalius/fit/initial_placement.h"
 #include "vesalius/fit/plastic_fit.h"

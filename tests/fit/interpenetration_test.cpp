@@ -1,4 +1,4 @@
-// Interpenetration removal (seed 002 §4.1.4): two fitted meshes that overlap are pushed apart until no
+// Interpenetration removal (Wang et al. 2021, §4.1.4): two fitted meshes that overlap are pushed apart until no
 // boundary vertex of either lies inside the other, without moving anything beyond the contact regions
 // (the penetrating vertices' tets grown by 5 rings) and without inverting a tet.
 #include "vesalius/fit/interpenetration.h"
@@ -86,7 +86,7 @@ TEST(Interpenetration, PushesAPokingBoxOutOfAFace) {
   EXPECT_EQ(r.regionTets[0], 0);
 }
 
-// A chain of three (the seed's contact islands): the second against the first, the third against both.
+// A chain of three (Wang et al.'s contact islands): the second against the first, the third against both.
 TEST(Interpenetration, SeparatesAChainOfThreeMeshes) {
   const TetMesh box = test::boxTets(6, 4, 4, 2.0);  // 12 x 8 x 8 mm
   std::vector<TetMesh> meshes = {box, shifted(box, {11.0, 0.5, 0.6}), shifted(box, {5.0, 7.2, 0.3})};

@@ -1,4 +1,4 @@
-// The validations of seed 002 on synthetic cases: the 1D string (§4.5, Fig. 23), the beam bent by
+// The validations of Wang et al. 2021 on synthetic cases: the 1D string (§4.5, Fig. 23), the beam bent by
 // attachments and stretched by ICP markers (Figs. 4, 22), and the spikes of the elastic baseline under a
 // point constraint as the mesh is refined (Fig. 2).
 #include "vesalius/fit/plastic_fit.h"

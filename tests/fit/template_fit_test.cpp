@@ -1,6 +1,6 @@
 // The whole fit of a template (fit/template_fit.h) on patients with a known answer: affine images of a
 // surface template (placed by ICP) and of a tet template (placed from landmarks paired by label). An affine
-// map is a constant plastic strain, so the fit can meet the markers (seed 002 §4: "0.5 mm or better"), the
+// map is a constant plastic strain, so the fit can meet the markers (Wang et al. 2021, §4: "0.5 mm or better"), the
 // volume grows by the map's determinant and the plastic stretches are its singular values. Refits keep the
 // tet target on two different shapes; markers that cannot be used are refused naming their set.
 #include "vesalius/fit/template_fit.h"

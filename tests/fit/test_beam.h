@@ -1,4 +1,4 @@
-// The beam of seed 002's Figs. 4 and 22, shared by the fit's tests: a 60 mm box of tets, its ends' bottom
+// The beam of Wang et al.'s Figs. 4 and 22, shared by the fit's tests: a 60 mm box of tets, its ends' bottom
 // edges attached to where a bend of radius 60 mm takes them, ICP markers on the rest of its surface
 // where the bend and a doubling of its z thickness take them.
 #pragma once

@@ -1,4 +1,4 @@
-// The organ templates of templates/organs fitted by patient::fitOrganToLabel (seed 002's plastic strains)
+// The organ templates of templates/organs fitted by patient::fitOrganToLabel (Wang et al.'s plastic strains)
 // to test patients that are not the templates' subjects: the shipped CT and its labels warped by a smooth,
 // invertible field that scales chosen organs by up to ±15 % about their centroids and shifts them by
 // 10–20 mm (warped_patient.h), so the kidney templates, made from this CT's labels, never meet their own

@@ -1,4 +1,4 @@
-// Fitted organs that touch, separated (patient::separateOrgans, seed 002 §4.1.4). The liver and the right
+// Fitted organs that touch, separated (patient::separateOrgans, Wang et al. 2021, §4.1.4). The liver and the right
 // kidney, whose labels touch on the shipped CT (the kidney's upper pole against the liver's underside: 231
 // liver voxels with a kidney voxel among their 26 neighbours), on two patients made from that CT by smooth
 // warps that scale both organs and shift them toward each other (warped_patient.h), so the kidney template
@@ -127,7 +127,7 @@ TEST_P(OrganSeparation, TouchingFittedOrgansAreSeparatedKeepingTheirDice) {
   patient::OrganFitOptions options;
   options.markers = 200;
   options.targetTets = 2000;
-  options.refits = 0;  // seed 002's fit alone: less close than with refits, so the organs overlap more
+  options.refits = 0;  // Wang et al.'s fit alone: less close than with refits, so the organs overlap more
   std::vector<patient::OrganFit> fits;
   for (int m = 0; m < 2; ++m)
     fits.push_back(patient::fitOrganToLabel(io::readTriMesh(kTemplates + "/" + names[m] + ".obj"), warped.labels,

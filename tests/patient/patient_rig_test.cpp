@@ -1,8 +1,8 @@
 // The virtual patient posed (patient/patient_rig.h) on the shipped CT and its labels, and on the same scan
 // stored flipped left-right (the same body in other voxel order: the rig must find the patient's own left
-// hip). For each pose, seed 001's claims: no inverted tet, the skin's volume within 1 %, no tissue vertex
+// hip). For each pose, Sujar et al.'s claims: no inverted tet, the skin's volume within 1 %, no tissue vertex
 // left outside its tet; the re-posed organ map's femurs over the posed femur meshes voxelized (Dice ≥ 0.9);
-// and the femur meshes turned about their hip joints as the pose asks (a bone moves rigidly, seed 001 §3.3).
+// and the femur meshes turned about their hip joints as the pose asks (a bone moves rigidly, Sujar et al. 2018, §3.3).
 #include "test_data.h"
 
 #include "vesalius/core/triangle_tree.h"

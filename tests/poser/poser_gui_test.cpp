@@ -1,7 +1,7 @@
 // Drives vesalius-poser for real (under Xvfb, as scripts/test.sh runs ctest) by playing a
 // vtkInteractorEventRecorder file kept beside this test, on MakeHuman's body rigged coarsely by
 // `vesalius rig` with one tissue inside it (the skin eroded by up to 1 cm of fat, `vesalius fat erode`: the
-// muscle surface of seed 000 §5; 5.4 mm on average, less where the body is thin) and the CMU motion 01_01.
+// muscle surface of Dicko et al. 2013, §5; 5.4 mm on average, less where the body is thin) and the CMU motion 01_01.
 //  - What the poser shows is what `vesalius pose` writes: after stepping to frame 400 the points of the
 //    skin and tissue actors (saved by key s) equal `pose --frame 400 --method m --no-restore-volume
 //    --no-untangle`'s meshes (the viewer skins without the volume restoration and the tet repair unless

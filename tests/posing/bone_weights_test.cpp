@@ -1,4 +1,4 @@
-// Bone weights by Laplace diffusion (seed 001 §3.3): constraints (eqs. 2-3) on a TetGen mesh of a body
+// Bone weights by Laplace diffusion (Sujar et al. 2018, §3.3): constraints (eqs. 2-3) on a TetGen mesh of a body
 // with bones, exact linear weights along a bar, and the refusals.
 #include "vesalius/posing/bone_weights.h"
 
@@ -19,7 +19,7 @@ using namespace vesalius;
 namespace {
 
 // A TetGen quality mesh of a ball of radius 40 holding three bones (balls of radius 8); bone vertices are
-// the corners of the tets labelled as bone, as in seed 001 §3.2.
+// the corners of the tets labelled as bone, as in Sujar et al. 2018, §3.2.
 struct BodyWithBones {
   TetMesh mesh;
   Eigen::VectorXi boneOfVertex;

@@ -1,4 +1,4 @@
-// The co-rotational FEM reference of seed 001 §5, Fig. 9 on the four-bone bar: exact for rigid poses,
+// The co-rotational FEM reference of Sujar et al. 2018, §5, Fig. 9 on the four-bone bar: exact for rigid poses,
 // and closer to volume-preserving than LBS on the 100° bend of Fig. 7.
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/corotational_fem.h"

@@ -1,4 +1,4 @@
-// Posed scans and label maps (seed 001 §5, Fig. 11): the four-bone bar of the skinning tests carries a
+// Posed scans and label maps (Sujar et al. 2018, §5, Fig. 11): the four-bone bar of the skinning tests carries a
 // label map and a scan through the identity, a rigid motion, a whole-voxel translation and a bend.
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/linear_blend_skinning.h"

@@ -1,4 +1,4 @@
-// Shared by the posing tests: the bar of seed 001 Fig. 7 (four bones along a box bar of Kuhn tets) and its
+// Shared by the posing tests: the bar of Sujar et al. 2018, Fig. 7 (four bones along a box bar of Kuhn tets) and its
 // poses, and the volume change of a posed tet mesh.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Centres of rotation for CoR skinning (Le & Hodgins 2016; seed 001 eqs. 6-7): the clustered evaluation
+// Centres of rotation for CoR skinning (Le & Hodgins 2016; Sujar et al. 2018, eqs. 6-7): the clustered evaluation
 // against the tet-by-tet reference on the four-bone bar and on a chain of many bones, and the one-bone
 // fallback.
 #include "vesalius/posing/bone_weights.h"

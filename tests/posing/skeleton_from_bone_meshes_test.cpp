@@ -1,4 +1,4 @@
-// Rigging from bone meshes (seed 001 §3.1): the cylinder fit of a hinge axis on synthetic arcs (exact),
+// Rigging from bone meshes (Sujar et al. 2018, §3.1): the cylinder fit of a hinge axis on synthetic arcs (exact),
 // the region of a mesh near another's surface, and the skeleton of the OpenSim Rajagopal 2016 meshes
 // against the model's own joints (hip, knee, ankle, lumbar, shoulder, elbow, wrist centres; knee and elbow
 // flexion axes).

@@ -1,4 +1,4 @@
-// Rigging from labelled bones (seed 001 §3.1): the sphere fit of a joint centre, the principal axis and
+// Rigging from labelled bones (Sujar et al. 2018, §3.1): the sphere fit of a joint centre, the principal axis and
 // the two-direction frame of a bone on synthetic shapes (exact), the bone vertices of a labelled tet
 // mesh, and the skeleton of the test CT's pelvis, femurs and lumbar spine.
 #include "vesalius/posing/bone_frame.h"

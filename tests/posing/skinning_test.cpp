@@ -1,4 +1,4 @@
-// LBS, DQS and CoR skinning of a tet mesh (seed 001 §3.5): the bar of Fig. 7, whose middle joint is bent
+// LBS, DQS and CoR skinning of a tet mesh (Sujar et al. 2018, §3.5): the bar of Fig. 7, whose middle joint is bent
 // by +100° and -100° and twisted by 135°, and what every skinning method must do exactly.
 #include "vesalius/posing/bone_weights.h"
 #include "vesalius/posing/cor_skinning.h"
@@ -85,7 +85,7 @@ TEST(Skinning, HemisphereOfTheHeaviestBoneDecidesTheQuaternionSign) {
     EXPECT_LT((skin(m, near) - skin(m, far)).cwiseAbs().maxCoeff(), 1e-9) << name(m);
 }
 
-// The seed reports (Fig. 7) that LBS loses volume, DQS gains and CoR keeps it. Measured as the signed
+// Sujar et al. 2018 reports (Fig. 7) that LBS loses volume, DQS gains and CoR keeps it. Measured as the signed
 // volume of the posed tets, LBS does lose and CoR does keep it, but DQS neither gains nor loses: every DQS
 // vertex turns rigidly about the joint's axis by its own angle θ, whose Jacobian determinant is
 // 1 + ∇θ · (n × (x - c)), and the integral of the second term is a surface integral that vanishes when the

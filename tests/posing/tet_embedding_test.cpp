@@ -1,4 +1,4 @@
-// Tissue points carried by the tet mesh (seed 001 §3.4-3.5): embedding, barycentric transfer and the
+// Tissue points carried by the tet mesh (Sujar et al. 2018, §3.4-3.5): embedding, barycentric transfer and the
 // per-tet affine maps agree, and reproduce affine deformations exactly, inside and outside the mesh.
 #include "vesalius/posing/tet_affine_maps.h"
 #include "vesalius/core/tet_embedding.h"

@@ -1,6 +1,6 @@
 // Local untangling of skinned tets (untangle_tets.h): the energy's gradient against finite differences, a
-// vertex pushed through its neighbours inside a box and on its surface, and the four-bone bar of seed 001
-// Fig. 7 bent until LBS, DQS and CoR invert tets at the inside of the joint.
+// vertex pushed through its neighbours inside a box and on its surface, and the four-bone bar of Sujar et al. 2018,
+// Fig. 7, bent until LBS, DQS and CoR invert tets at the inside of the joint.
 #include "vesalius/posing/untangle_tets.h"
 
 #include "vesalius/core/error.h"

@@ -1,5 +1,5 @@
 // Volume restoration after skinning (volume_restoration.h): the energy's gradient against finite
-// differences, nothing moved where no tet changed volume, and the four-bone bar of seed 001 Fig. 7 bent
+// differences, nothing moved where no tet changed volume, and the four-bone bar of Sujar et al. 2018, Fig. 7 bent
 // and twisted, where LBS loses volume at the joint: restored, smoothly, with the bone vertices unmoved.
 #include "vesalius/posing/volume_restoration.h"
 

@@ -1,4 +1,4 @@
-// Capping a label map's size (seed 001 §3.2): the capped grid covers the same box, a ball keeps its
+// Capping a label map's size (Sujar et al. 2018, §3.2): the capped grid covers the same box, a ball keeps its
 // centre and volume when resampled, and oblique grids are capped along the axes they point along.
 #include "vesalius/segmentation/label_resample.h"
 

@@ -1,4 +1,4 @@
-// A known smooth anisotropic plastic field (seed 002 Fig. 21's ground truth) used by the fit's
+// A known smooth anisotropic plastic field (Wang et al. 2021, Fig. 21's ground truth) used by the fit's
 // validation test and its benchmark.
 #pragma once
 

@@ -1,6 +1,6 @@
 // The anatomical rules (anatomy_rules.h) on the full-body reference (MakeHuman's neutral skin with
 // Rajagopal's OpenSim bones, `vesalius reference full-body`: 81 bone meshes) and on it transferred
-// (seed 000 §7-8) into MakeHuman's thin and muscular bodies. Those share the neutral skin's topology, so
+// (Dicko et al. 2013, §7-8) into MakeHuman's thin and muscular bodies. Those share the neutral skin's topology, so
 // reference skin vertex i lands at the body's vertex i: the transfer runs without a skin registration,
 // on the correspondence the bodies were made with.
 #include "vesalius/transfer/anatomy_rules.h"

@@ -1,4 +1,4 @@
-// The anatomical rules of seed 000 (§3) measured on an anatomy (anatomy_rules.h), on synthetic anatomies
+// The anatomical rules of Dicko et al. 2013 (§3) measured on an anatomy (anatomy_rules.h), on synthetic anatomies
 // where each rule must fire and must not: a tissue pushed out of the skin, an inverting field, a trunk
 // pair moved off the sagittal plane, a bent long bone, two spheres overlapping.
 #include "vesalius/transfer/anatomy_rules.h"

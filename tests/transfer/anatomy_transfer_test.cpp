@@ -1,4 +1,4 @@
-// Anatomy transfer on a synthetic body (seed 000 §7–8): the rules R1, R2, R5–R7 as numbers.
+// Anatomy transfer on a synthetic body (Dicko et al. 2013, §7–8): the rules R1, R2, R5–R7 as numbers.
 #include "vesalius/transfer/anatomy_transfer.h"
 
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// Body frame and head extraction (seed 004 §3.1) on MakeHuman's neutral skin in LPS mm.
+// Body frame and head extraction (GRAPP 2012, §3.1) on MakeHuman's neutral skin in LPS mm.
 #include "vesalius/transfer/body_frame.h"
 
 #include "vesalius/core/error.h"

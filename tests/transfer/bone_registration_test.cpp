@@ -1,4 +1,4 @@
-// Bone registration (seed 000 §8): affine, sagittally symmetric and long-bone least-squares maps.
+// Bone registration (Dicko et al. 2013, §8): affine, sagittally symmetric and long-bone least-squares maps.
 #include "vesalius/transfer/bone_registration.h"
 
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// Displacement fields from scattered boundary displacements (seed 000 §7).
+// Displacement fields from scattered boundary displacements (Dicko et al. 2013, §7).
 #include "vesalius/transfer/displacement_field.h"
 
 #include "vesalius/meshing/mesh_volume.h"

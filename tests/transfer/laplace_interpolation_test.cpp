@@ -1,4 +1,4 @@
-// Laplace interpolation (seed 000 §7): discretely harmonic functions are reproduced, the solvers agree,
+// Laplace interpolation (Dicko et al. 2013, §7): discretely harmonic functions are reproduced, the solvers agree,
 // V-cycles contract, bad set-ups are refused, and neither threads nor solving three fields at once
 // change the result.
 #include "vesalius/transfer/laplace_interpolation.h"

@@ -1,4 +1,4 @@
-// Dirichlet values from scattered points (the skin's displacements as boundary conditions, seed 000 §7).
+// Dirichlet values from scattered points (the skin's displacements as boundary conditions, Dicko et al. 2013, §7).
 #include "vesalius/transfer/point_constraints.h"
 
 #include "vesalius/core/error.h"
@@ -69,7 +69,7 @@ TEST(PointConstraints, PointsOutsideTheGridAndMismatchesAreRefused) {
   EXPECT_THROW(writeConstraintValues(splatPointValues(g, inside, Eigen::MatrixXd::Zero(1, 3)), 3, field), UsageError);
 }
 
-// The whole path of seed 000 §7: an affine displacement known only at points on a sphere (a "skin")
+// The whole path of Dicko et al. 2013, §7: an affine displacement known only at points on a sphere (a "skin")
 // is splatted onto the grid and interpolated; inside, the field is the affine map up to the splat's
 // O(h |∇d|) error at the shell (a harmonic function keeps its extremes on the boundary).
 TEST(PointConstraints, AffineDisplacementOfASphereIsInterpolatedInside) {

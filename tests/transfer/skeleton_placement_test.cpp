@@ -1,4 +1,4 @@
-// Rajagopal 2016's bones and muscle path points placed inside MakeHuman's neutral skin: seed 004's body
+// Rajagopal 2016's bones and muscle path points placed inside MakeHuman's neutral skin: the GRAPP 2012 paper's body
 // frame and head-spine joint, then one similarity per body onto MakeHuman's joints.
 #include "vesalius/transfer/skeleton_placement.h"
 

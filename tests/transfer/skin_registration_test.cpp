@@ -1,4 +1,4 @@
-// Skin registration (seed 000 §4) on MakeHuman bodies. The neutral, thin and muscular bodies share one
+// Skin registration (Dicko et al. 2013, §4) on MakeHuman bodies. The neutral, thin and muscular bodies share one
 // topology, so the true correspondence is known (vertex i ↦ vertex i); the registration sees only the
 // surfaces. Baseline: plain closest-point projection of the source vertices onto the target.
 #include "vesalius/transfer/skin_registration.h"

@@ -1,4 +1,4 @@
-// Bone attachments (attachments.h, seed 002 §4.1.2).
+// Bone attachments (attachments.h, Wang et al. 2021, §4.1.2).
 #include "vesalius/fit/attachments.h"
 
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// Surface embedding (embedding.h, seed 002 §4.3).
+// Surface embedding (embedding.h, Wang et al. 2021, §4.3).
 #include "vesalius/fit/embedding.h"
 
 #include "vesalius/core/error.h"

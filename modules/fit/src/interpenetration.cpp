@@ -1,4 +1,4 @@
-// Interpenetration removal between fitted organs (interpenetration.h, seed 002 §4.1.4).
+// Interpenetration removal between fitted organs (interpenetration.h, Wang et al. 2021, §4.1.4).
 #include "vesalius/fit/interpenetration.h"
 
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// The Gauss-Newton driver of seed 002 §3.4-3.6. One iteration:
+// The Gauss-Newton driver of Wang et al. 2021, §3.4-3.6. One iteration:
 //   1. the stage's constraints at x (ICP markers re-projected onto the surface),
 //   2. K and G at (x, s), factored once: Z = √c A J (equilibrium_jacobian.h),
 //   3. the search direction from (L² + ZᵀZ) Δs = −(L² s + Zᵀ r) by Woodbury (or, for the constant-s

@@ -250,7 +250,7 @@ void SparseCholesky::solvePermutedInPlace(RowMajorMatrixXd& X) const {
   });
 }
 
-// Blocks of `blockColumns` columns of X in parallel (seed 002 §3.4: the many right-hand sides of Z);
+// Blocks of `blockColumns` columns of X in parallel (Wang et al. 2021, §3.4: the many right-hand sides of Z);
 // each column's solution is the same whatever the threads.
 template <class SolveBlock>
 void SparseCholesky::solveBlocks(Eigen::Index rows, Eigen::Index cols, Eigen::Index blockColumns,

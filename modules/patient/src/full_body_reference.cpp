@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// OpenSim bodies of the trunk (seed 000 §8: skull, spine, sternum, pelvis, rib cage move symmetrically).
+// OpenSim bodies of the trunk (Dicko et al. 2013, §8: skull, spine, sternum, pelvis, rib cage move symmetrically).
 bool isTrunkBody(const std::string& body) { return body == "pelvis" || body == "torso"; }
 
 // A bone mesh's group (the bones that move by one map in §8): its OpenSim body, but for the skull and jaw,
@@ -33,7 +33,7 @@ std::string boneGroup(const std::string& body, const std::string& mesh) {
   return body == "torso" && (mesh == "hat_skull" || mesh == "hat_jaw") ? io::kSkullGroup : body;
 }
 
-// The bones that move inside the skin together, by name: a trunk group (symmetric, seed 000 §8) as one,
+// The bones that move inside the skin together, by name: a trunk group (symmetric, Dicko et al. 2013, §8) as one,
 // every other bone mesh alone (the hand's carpals apart from its digits, which the placement already fits
 // bone by bone). Each tissue's unit name is in unitOfTissue. The skull and jaw (one symmetric unit) need
 // the skin's mouth counted as inside (meshing/body_distance.h): 2,031 of their vertices lie in it, which
@@ -177,7 +177,7 @@ FullBodyReference buildFullBodyReference(const FullBodySources& sources, const s
                                 tissue == firstTissueOfBody.end() ? "" : tissue->second,
                                 paths[m].row(Eigen::Index(p)).transpose()});
     }
-  // The joint centres, which the transfer carries too (seed 000 §8): each non-root body's origin, named
+  // The joint centres, which the transfer carries too (Dicko et al. 2013, §8): each non-root body's origin, named
   // joint/BODY and fixed to the body's first mesh.
   for (std::size_t b = 0; b < model.bodies.joints.size(); ++b) {
     if (model.bodies.joints[b].parent < 0) continue;

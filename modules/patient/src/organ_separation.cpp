@@ -1,4 +1,4 @@
-// Fitted organs separated where they touch (organ_separation.h, seed 002 §4.1.4).
+// Fitted organs separated where they touch (organ_separation.h, Wang et al. 2021, §4.1.4).
 #include "vesalius/patient/organ_separation.h"
 
 #include "vesalius/core/error.h"

@@ -16,7 +16,7 @@ namespace {
 
 bool isSoftTissue(TissueKind kind) { return kind == TissueKind::Organ || kind == TissueKind::Muscle; }
 
-// The reference's own bones as the targets of the transfer's per-bone registration (seed 000 §8 with the
+// The reference's own bones as the targets of the transfer's per-bone registration (Dicko et al. 2013, §8 with the
 // target's bones known): each bone group's meshes, 2,000 points spread over them.
 std::map<std::string, MatrixX3d> ownBones(const ReferenceAnatomy& reference) {
   std::map<std::string, TriMesh> groups;

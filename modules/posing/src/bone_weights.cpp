@@ -1,4 +1,4 @@
-// Bone weights by Laplace diffusion (bone_weights.h, seed 001 §3.3).
+// Bone weights by Laplace diffusion (bone_weights.h, Sujar et al. 2018, §3.3).
 #include "vesalius/posing/bone_weights.h"
 
 #include "vesalius/core/error.h"

@@ -1,4 +1,4 @@
-// Centres of rotation for CoR skinning (rotation_centers.h, Le & Hodgins 2016 eq. 3, seed 001 eqs. 6-7).
+// Centres of rotation for CoR skinning (rotation_centers.h, Le & Hodgins 2016 eq. 3; Sujar et al. 2018, eqs. 6-7).
 #include "vesalius/posing/rotation_centers.h"
 
 #include "vesalius/core/error.h"

@@ -38,14 +38,14 @@ void timed(BuiltRig& rig, const std::string& name, F&& stage) {
   rig.stageSeconds.emplace_back(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-// The grid of the voxelized body: --voxel-size, grown if needed to stay under the seed's cap (§3.2).
+// The grid of the voxelized body: --voxel-size, grown if needed to stay under Sujar et al.'s cap (§3.2).
 GridGeometry bodyGrid(const TriMesh& skin, const RigOptions& o) {
   meshing::CoveringGridOptions grid;
   grid.voxelSizeMm = o.voxelSize;
   return meshing::coveringGrid({&skin}, grid);
 }
 
-// Seed 001 §3.2: the inside of the skin as a voxel image under the size cap (bone_mesh_labels.h), its
+// Sujar et al. 2018, §3.2: the inside of the skin as a voxel image under the size cap (bone_mesh_labels.h), its
 // surface (closed, free of self-crossings, which TetGen needs and an artist's mesh need not be), then TetGen.
 TetMesh bodyTets(const TriMesh& skin, const RigOptions& o, const std::string& source) {
   const segmentation::Mask inside = skinInsideMask(skin, bodyGrid(skin, o), source);
@@ -179,8 +179,8 @@ Label bodyLabel(const std::vector<std::vector<Label>>& boneLabels) {
   return body;
 }
 
-// Seed 001 §3.2 from a label map: only the bones' box grown by `margin` is meshed (the body is cut flat
-// at its sides), resampled (nearest neighbour) to voxels of at least `voxelSize` and within the seed's
+// Sujar et al. 2018, §3.2 from a label map: only the bones' box grown by `margin` is meshed (the body is cut flat
+// at its sides), resampled (nearest neighbour) to voxels of at least `voxelSize` and within Sujar et al.'s
 // 250x700x120.
 LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double margin, double voxelSize) {
   std::vector<bool> isBone(65536, false);
@@ -189,7 +189,7 @@ LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double
   segmentation::Mask bone(map.labels.geometry, 0);
   for (std::size_t v = 0; v < bone.values.size(); ++v) bone.values[v] = isBone[map.labels.values[v]];
   LabelMap box = segmentation::cropLabelMap(map, segmentation::maskBounds(bone, margin));
-  // At most one voxel per voxelSize along each axis, and within the seed's cap (LPS order).
+  // At most one voxel per voxelSize along each axis, and within Sujar et al.'s cap (LPS order).
   const GridGeometry& g = box.labels.geometry;
   Eigen::Vector3i cap = meshing::CoveringGridOptions{}.maxSize;
   for (int d = 0; d < 3; ++d) {
@@ -259,7 +259,7 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
   return surfaces;
 }
 
-// Seed 001 §3.2-3.3 from the nested region surfaces of the body and its bones: TetGen, each bone's region
+// Sujar et al. 2018, §3.2-3.3 from the nested region surfaces of the body and its bones: TetGen, each bone's region
 // the vertices of its tets (boneLabels: per joint of the skeleton, the labels of its bone), weights, centres.
 void rigOfRegions(BuiltRig& built, const std::vector<meshing::RegionSurface>& regions,
                   const std::vector<std::vector<Label>>& boneLabels, const RigOptions& o, Progress& progress) {
@@ -295,7 +295,7 @@ std::string jointOfBody(const std::string& body) {
   return body;
 }
 
-// Seed 001 §3.2 for a reference anatomy: its skin and, per joint, the bone meshes of the joint's OpenSim
+// Sujar et al. 2018, §3.2 for a reference anatomy: its skin and, per joint, the bone meshes of the joint's OpenSim
 // body (the tissues' group, jointOfBody) voxelized into one label map (bone_mesh_labels.h: label j + 1
 // for joint j), then nested region surfaces as for --labels. boneLabels: per joint its label, none for a
 // joint with no bone voxel (a hand outside the skin at coarse voxels would have none).

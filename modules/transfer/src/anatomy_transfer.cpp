@@ -126,7 +126,7 @@ AffineMap fitGroupMap(const BoneGroupMap& group, const MatrixX3d& P, const Matri
   return group.longBones ? fitLongBoneMap(P, Q, weights) : fitAffineMap(P, Q, weights);
 }
 
-// Rule R6 in the bone registration: the seed leaves collisions to "standard collision handling routines"
+// Rule R6 in the bone registration: Dicko et al. 2013 leaves collisions to "standard collision handling routines"
 // (§8). A vertex the group's map puts shallower inside the target's eroded skin than its attractor, or than
 // the margin where the attractor is deeper, has its spring stiffened `insideWeightGrowth`-fold, up to
 // `insideMaxWeight`, and the map is fitted again, until no vertex is shallow below that stiffness (at most

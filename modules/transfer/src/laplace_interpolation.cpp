@@ -1,4 +1,4 @@
-// Laplace interpolation (seed 000 §7): matrix-free multigrid and CG on a padded grid, for C fields with the
+// Laplace interpolation (Dicko et al. 2013, §7): matrix-free multigrid and CG on a padded grid, for C fields with the
 // same cell roles at once (C = 1, or 3 for the components of a displacement).
 //
 // Invariants that keep the kernels branch-light and their memory traffic low:
@@ -33,7 +33,7 @@ namespace vesalius::transfer {
 namespace {
 
 // Arrays of 2 MB or more are 2 MB-aligned and ask for transparent huge pages (madvise, a hint the kernel
-// may ignore): the seed's grid has 37 M padded cells, and every first touch of a 4 kB page is a page
+// may ignore): Dicko et al.'s grid has 37 M padded cells, and every first touch of a 4 kB page is a page
 // fault, ~25 µs each on the shared VM we measure on (zero-filling the 300 MB diagonal took 2.0 s of a
 // 5.6 s setup). A 2 MB page means 512 times fewer faults; the values are the same.
 template <class T>

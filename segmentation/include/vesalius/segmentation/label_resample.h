@@ -1,4 +1,4 @@
-// Coarser label maps under a size cap, for meshing a whole body (seed 001 §3.2: the voxel size is chosen
+// Coarser label maps under a size cap, for meshing a whole body (Sujar et al. 2018, §3.2: the voxel size is chosen
 // so that the body image stays under 250x700x120 voxels).
 #pragma once
 

@@ -1,4 +1,4 @@
-// A reference anatomy as anatomy transfer takes it (seed 000 §3, Fig. 2.c): a skin with bones, muscles
+// A reference anatomy as anatomy transfer takes it (Dicko et al. 2013, §3, Fig. 2.c): a skin with bones, muscles
 // and organs inside it, and named points (muscle path points, joint centres) fixed to them.
 // On disk it is a folder with reference.json (io/reference_anatomy_io.h; docs/formats.md).
 #pragma once
@@ -38,7 +38,7 @@ struct ReferenceTissue {
   // sacrum); a bone with an empty group is a group of its own.
   std::string group;
   // Trunk bones (skull, spine, sternum, pelvis, rib cage) move by maps symmetric about the sagittal plane
-  // (seed 000 §8, rule R2). Every tissue of a group must agree.
+  // (Dicko et al. 2013, §8, rule R2). Every tissue of a group must agree.
   bool symmetric = false;
   TriMesh mesh;  // closed surface, mm, LPS
 };

@@ -1,4 +1,4 @@
-// The posing rig of an anatomy (seed 001 §3.1-3.5 preprocessing): the rest tet mesh of the inside of the
+// The posing rig of an anatomy (Sujar et al. 2018, §3.1-3.5 preprocessing): the rest tet mesh of the inside of the
 // body with its bone regions, the bone weights and centres of rotation as vertex attributes, the skeleton
 // whose joints the weights follow, and the names of the meshes the rig carries. `rigging` builds it,
 // `posing` poses it, io/anatomy_rig_io.h keeps it in a folder.
@@ -17,7 +17,7 @@ namespace vesalius {
 
 struct AnatomyRig {
   // Rest tets, mm LPS. Vertex attributes: "bone" (#V: the column of the vertex's bone in "weights", -1 for
-  // tissue), "weights" (#V by #B, seed 001 §3.3), and "cor_centre" (#V by 3, centres of rotation, §3.5)
+  // tissue), "weights" (#V by #B, Sujar et al. 2018, §3.3), and "cor_centre" (#V by 3, centres of rotation, §3.5)
   // when they were computed.
   TetMesh tets;
   Skeleton skeleton;                // rest, mm LPS

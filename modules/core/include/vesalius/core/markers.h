@@ -1,4 +1,4 @@
-// Marker sets: the points a radiologist picks on a scan to drive fitting (seed 002 §3.1, §4.1).
+// Marker sets: the points a radiologist picks on a scan to drive fitting (Wang et al. 2021, §3.1, §4.1).
 //
 // Landmarks pair a scan point with a template point (by label, or by an explicit template position);
 // ICP markers are scan points the deformed surface must pass through; attachments tie a template

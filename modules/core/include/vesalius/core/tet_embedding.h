@@ -1,15 +1,15 @@
 // Points embedded in a tet mesh and carried with its deformation: tissue vertices in the posing tet mesh
-// (seed 001 §3.4-3.5), a textured surface in a fitted template (seed 002 §4.3).
+// (Sujar et al. 2018, §3.4-3.5), a textured surface in a fitted template (Wang et al. 2021, §4.3).
 //
 // Each point is located once in the rest tet mesh (TetLocator: a bounding-volume hierarchy in place of
-// seed 001's spatial hash) and keeps its tet and its barycentric coordinates there. Deformed, it is the
+// Sujar et al.'s spatial hash) and keeps its tet and its barycentric coordinates there. Deformed, it is the
 // same combination of that tet's deformed corners, i.e. the tet's affine map applied to the point. A point
-// outside the mesh (seed 001 met 4.6 % such tissue vertices) takes the nearest tet and its unclamped
+// outside the mesh (Sujar et al. 2018 met 4.6 % such tissue vertices) takes the nearest tet and its unclamped
 // barycentric coordinates in it, so it keeps its offset from the surface, deformed with that tet, instead
 // of being snapped onto the surface. An affine deformation of the tet mesh therefore moves every point
 // exactly, inside or outside.
 //
-// Carrying is per point, a weighted sum of four corners: with about 0.3 points per tet (seed 001's sizes)
+// Carrying is per point, a weighted sum of four corners: with about 0.3 points per tet (Sujar et al.'s sizes)
 // this costs less than forming each tet's affine map (posing/tet_affine_maps.h) every frame. It reads the
 // corners where the points' tets are, so points in a spatially coherent order (as a mesh's vertices come)
 // carry several times faster than points in random order.

@@ -1,7 +1,7 @@
 // Point location in a tetrahedral mesh: which tet holds a point, and its barycentric coordinates.
 //
 // Build once, query many times (thread-safe). Used to embed surfaces, markers and tissue vertices in
-// tet meshes (seed 001 §3.4, seed 002 §4.3). Seed 001 §3.4 finds each vertex's tet through a spatial hash;
+// tet meshes (Sujar et al. 2018, §3.4; Wang et al. 2021, §4.3). Sujar et al.'s §3.4 finds each vertex's tet through a spatial hash;
 // here a bounding-volume hierarchy does it, and a batch of points is visited in Morton (Z-curve) order, so
 // that consecutive queries walk the same tree nodes and tets while they are still in cache. The order
 // changes only the speed: each point's answer is the one a single query gives.

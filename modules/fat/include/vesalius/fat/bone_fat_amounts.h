@@ -1,11 +1,11 @@
-// The fat editor of seed 000 §6 on a reference anatomy: per-bone fat amounts spread over the bounded
+// The fat editor of Dicko et al. 2013, §6 on a reference anatomy: per-bone fat amounts spread over the bounded
 // biharmonic weights of the reference's bones (bounded_biharmonic_weights.h) on a voxel grid inside its
 // skin, combined at the skin's vertices (bone_fat_thickness.h):
 //
 //   thickness(x) = maxThicknessMm · Σ_j w_j(x) · amount_j
 //
 // The editor's bones are the reference's bone groups, the bones that move by one map in §8 (both hips
-// and the sacrum are "pelvis"); a bone without a group is one of its own. Deviations: the seed precomputes
+// and the sacrum are "pelvis"); a bone without a group is one of its own. Deviations: Dicko et al. 2013 precomputes
 // the weights once per reference; here they are computed for each call, on a grid of voxelSizeMm (10 mm
 // takes minutes on the full body, 20 mm seconds). A bone's voxels are its inside (if its mesh is closed)
 // and the voxels whose centre lies within half a voxel diagonal of its surface, so that no bone is too thin
@@ -27,7 +27,7 @@ namespace vesalius::fat {
 
 struct BoneFatAmountsOptions {
   double voxelSizeMm = 15;     // of the weights' grid
-  double maxThicknessMm = 50;  // the thickness an amount of 1 gives (the seed gives amounts no unit)
+  double maxThicknessMm = 50;  // the thickness an amount of 1 gives (Dicko et al. 2013 gives amounts no unit)
   double defaultAmount = 0;    // of the bones `amounts` does not name
   std::string referenceSource;  // names the reference in BadInput messages
   std::string amountsSource;    // names the amounts in BadInput messages

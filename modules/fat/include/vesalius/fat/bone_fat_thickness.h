@@ -1,11 +1,11 @@
-// The fat editor's thickness (seed 000 §6): "The editor computes linear combination of pre-computed bone
+// The fat editor's thickness (Dicko et al. 2013, §6): "The editor computes linear combination of pre-computed bone
 // weights with the control parameters set by the users to generate the final fat distribution map",
 // e.g. "0.4 to the pelvis and sacrum bones ... 0 to the skull because there is no fat beneath his scalp".
 //
 //   thickness(x) = maxThicknessMm · Σ_j w_j(x) · amount_j
 //
 // with w_j the normalised bounded biharmonic weights of bone j (bounded_biharmonic_weights.h) at x.
-// The seed gives the amounts no unit (its Fig. 3 shows brightness); here an amount is the fraction of
+// Dicko et al. 2013 gives the amounts no unit (its Fig. 3 shows brightness); here an amount is the fraction of
 // maxThicknessMm, so 0.4 with the default 50 mm is 20 mm of fat where the pelvis alone has weight (the
 // test CT's subcutaneous fat has a median of 18 mm and a 95th percentile of 45 mm,
 // docs/methods/fat-thickness.md). Amounts are not limited to [0, 1]; thickness is linear in them.

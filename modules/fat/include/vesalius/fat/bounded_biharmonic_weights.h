@@ -1,6 +1,6 @@
 // Bounded biharmonic weights of handles on a voxel grid (Jacobson, Baran, Popović, Sorkine, "Bounded
 // biharmonic weights for real-time deformation", SIGGRAPH 2011, §3 Eq. 1–4), as the fat editor of
-// seed 000 §6 uses them: "We set the bones as boundary constraints and minimize biharmonic (Laplacian)
+// Dicko et al. 2013, §6, uses them: "We set the bones as boundary constraints and minimize biharmonic (Laplacian)
 // energy subject to these constraints ... we compute bounded biharmonic weights using a regular voxel
 // grid" (after Kavan and Sorkine 2012).
 //

@@ -1,4 +1,4 @@
-// Volume erosion: the skin surface moved inward by the subcutaneous fat thickness (seed 000 §5 and
+// Volume erosion: the skin surface moved inward by the subcutaneous fat thickness (Dicko et al. 2013, §5 and
 // Fig. 2.b: "For each vertex of the target, we compute the local depth using the texture coordinates
 // and we move the vertex by this distance following the forest of shortest paths.").
 //

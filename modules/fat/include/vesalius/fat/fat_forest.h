@@ -1,5 +1,5 @@
 // The forest of shortest paths from the skin through the subcutaneous fat, and the fat thickness it
-// gives every skin voxel (seed 000, §5 "Volume erosion": "We compute a forest of shortest paths from the
+// gives every skin voxel (Dicko et al. 2013, §5 "Volume erosion": "We compute a forest of shortest paths from the
 // skin voxels to the fat voxels, where each skin voxel is the root of a tree. Then for each skin voxel we
 // set the local fat thickness to the maximum distance to the leaves of its tree.").
 //

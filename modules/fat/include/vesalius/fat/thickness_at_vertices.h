@@ -1,5 +1,5 @@
 // Fat thickness carried from the skin voxels of a FatForest to the vertices of a skin surface mesh
-// (seed 000 §5: thickness is kept per skin point before it is rasterized into the skin's texture).
+// (Dicko et al. 2013, §5: thickness is kept per skin point before it is rasterized into the skin's texture).
 //
 // Each vertex takes the largest thickness of the skin voxels whose centres lie within `radiusMm` of it
 // (default: one voxel diagonal). The maximum, not the mean or the nearest voxel: a skin layer more than

@@ -1,4 +1,4 @@
-// Fat thickness in the skin's texture space, and back (seed 000 §3: the user gives "a user-defined
+// Fat thickness in the skin's texture space, and back (Dicko et al. 2013, §3: the user gives "a user-defined
 // distribution of sub-skin fat ... modeled using a thickness function in texture space"; §5: "Based on
 // the texture coordinates of the skin voxels and the associated thickness, we interpolate the value at
 // each pixel of the thickness texture", and erosion reads "the local depth using the texture

@@ -1,4 +1,4 @@
-// The plastic elastic energy of a whole tet mesh, E(s, x) = Σ_t |Fp_t| V0_t ψ(F_t Fp_t⁻¹) (seed 002 §3.2,
+// The plastic elastic energy of a whole tet mesh, E(s, x) = Σ_t |Fp_t| V0_t ψ(F_t Fp_t⁻¹) (Wang et al. 2021, §3.2,
 // eq. 1), with its force, tangent stiffness and the derivative of the force in the plastic strains
 // (Appendix B), assembled over tets in parallel.
 //
@@ -34,7 +34,7 @@ class PlasticFem {
   // ∂²E/∂x², 3#V by 3#V, both triangles stored. The pattern (every tet's 12x12 block plus the whole
   // diagonal) is the same on every call, so SparseCholesky keeps its analysis. projected: PSD.
   Eigen::SparseMatrix<double> stiffness(const Eigen::VectorXd& x, const Eigen::VectorXd& s, bool projected) const;
-  // ∂²E/∂x∂s, 3#V by 6#T: the seed's ∂f_e/∂s (its f_e is ∂E/∂x), column 6 t + i for s_i of tet t.
+  // ∂²E/∂x∂s, 3#V by 6#T: Wang et al.'s ∂f_e/∂s (its f_e is ∂E/∂x), column 6 t + i for s_i of tet t.
   Eigen::SparseMatrix<double> plasticForceJacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& s) const;
   // #T values det(F Fp⁻¹); a tet is inverted relative to its plastic rest shape where it is ≤ 0.
   Eigen::VectorXd elasticJacobians(const Eigen::VectorXd& x, const Eigen::VectorXd& s) const;

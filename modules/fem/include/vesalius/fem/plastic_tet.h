@@ -1,4 +1,4 @@
-// One tet of the plastic elastic energy (seed 002 §3.2, eq. 1) and its derivatives (Appendix B,
+// One tet of the plastic elastic energy (Wang et al. 2021, §3.2, eq. 1) and its derivatives (Appendix B,
 // eqs. 31-43, moved from vec(Fp) to s with vec(Fp) = Y s):
 //   E(Fp, x) = |Fp| V0 ψ(F Fp⁻¹),   F Fp⁻¹ = Ds (Fp Dm)⁻¹,
 // Ds = [x1 − x0, x2 − x0, x3 − x0] of the deformed corners, Dm the same of the rest (template) corners.

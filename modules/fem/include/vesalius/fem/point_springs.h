@@ -1,5 +1,5 @@
 // Soft attachments: zero-rest-length springs pulling material points of the tet mesh to world targets
-// (the attachment force f_a of seed 002 §3.3, written as in Appendix F, eqs. 52-53):
+// (the attachment force f_a of Wang et al. 2021, §3.3, written as in Appendix F, eqs. 52-53):
 //   E_a(x) = Σ_i k_i/2 ||Σ_c w_ic x_{T(tet_i, c)} − target_i||².
 // Quadratic in x, so the Hessian is constant. A vertex is the material point with weight 1 on one corner.
 #pragma once

@@ -1,5 +1,5 @@
 // Stable neo-Hookean elasticity (Smith, de Goes, Kim, "Stable Neo-Hookean Flesh Simulation", ACM TOG 37(2),
-// 2018): the isotropic energy density ψ that seed 002 uses in its plastic elastic energy (§3.2, eq. 1).
+// 2018): the isotropic energy density ψ that Wang et al. 2021 uses in its plastic elastic energy (§3.2, eq. 1).
 //
 //   ψ(F) = μ/2 (I_C − 3) + λ/2 (J − α)² − μ/2 log(I_C + 1) − ψ0,   I_C = tr(FᵀF), J = det F,
 //   α = 1 + 3μ/(4λ) makes the rest state stress-free (P(I) = 0), and the constant

@@ -1,5 +1,5 @@
 // Static equilibrium of the plastically deformed body under point springs, for fixed plastic strains s:
-//   f_e(Fp(s), x) + f_a(x) = 0   (seed 002 §3.3, eq. 4; eq. 7 with f_net),
+//   f_e(Fp(s), x) + f_a(x) = 0   (Wang et al. 2021, §3.3, eq. 4; eq. 7 with f_net),
 // i.e. a stationary point of E_total(x) = E(s, x) + E_a(x), found by minimizing E_total.
 //
 // Newton's method with a backtracking (Armijo) line search on E_total. Tets may invert on the way (Smith
@@ -9,7 +9,7 @@
 // elements keep residual stress (inconsistent plastic strains). Both carry Levenberg-Marquardt damping
 // ν·d·I (d = mean diagonal; ν ÷10 after a full step, ×10 when no step is found, from 1e-9 to 1e8), which
 // changes the steps, never the equilibrium, and makes the matrix definite when the springs do not remove
-// the 6 rigid motions (un-attached objects, seed §3.6): the elastic force has no net force or torque, so
+// the 6 rigid motions (un-attached objects, Wang et al. 2021, §3.6): the elastic force has no net force or torque, so
 // rigid motions are not excited. One SparseCholesky analysis serves all iterations.
 #pragma once
 

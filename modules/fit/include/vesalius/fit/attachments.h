@@ -1,15 +1,15 @@
-// Attachments of a template organ to a bone (seed 002 §4.1.2 and §3.1): the bone vertices where the organ
+// Attachments of a template organ to a bone (Wang et al. 2021, §4.1.2 and §3.1): the bone vertices where the organ
 // inserts become soft constraints, each tying a material point of the organ to the bone vertex.
 //
 // Every vertex of `bone` within a radius R of the placed template's surface is attached, so `bone` should
-// be the insertion itself (the seed's are marked by hand; from a label map, the bone's interface with the
+// be the insertion itself (Wang et al.'s are marked by hand; from a label map, the bone's interface with the
 // muscle label, meshing/shared_label_surfaces.h interfaceOfLabels). Given a whole bone, R must cover the
 // placement's error, and the band within R is attached also where other tissue lies between bone and
 // muscle: on the test CT's gluteus medius (hip within 5 mm: 1,226 vertices; the hip's interface with the
 // muscle label has 324) the fit stopped at 0.76 mm mean ICP error, against 0.23 mm attached to the
 // insertion (docs/methods/plastic-fit.md). Each attached vertex's material point is its closest point on the placed
 // template's surface, expressed by the barycentric weights of that boundary triangle and mapped back to
-// the triangle's rest (template-space) corners; its target is the bone vertex itself. (The seed marks the
+// the triangle's rest (template-space) corners; its target is the bone vertex itself. (Wang et al. 2021 marks the
 // insertion by hand and takes the closest tet; with the template placed on the scan, the closest surface
 // point is that tet's boundary point.)
 #pragma once

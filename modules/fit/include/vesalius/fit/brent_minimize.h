@@ -1,6 +1,6 @@
 // Brent's derivative-free 1D minimization: golden-section search with parabolic interpolation (Brent
 // 1973; Press et al., Numerical Recipes §10.3). The fitter's line search on the step η ∈ [0, ηmax]
-// uses it (seed 002 §3.4), because each evaluation is an equilibrium solve and there is no gradient.
+// uses it (Wang et al. 2021, §3.4), because each evaluation is an equilibrium solve and there is no gradient.
 #pragma once
 
 #include <functional>

@@ -1,9 +1,9 @@
-// Fixed point constraints as few rows: the attachment terms of seed 002 eq. 6 (Appendix F, eqs. 52-53),
+// Fixed point constraints as few rows: the attachment terms of Wang et al. 2021, eq. 6 (Appendix F, eqs. 52-53),
 //   Σ_k c_k/2 ||A_k x + b_k||²,
 // rewritten exactly as ½||R x − q||² + offset with at most 3 rows per template vertex they involve.
 //
 // Why: every constraint row is a row of Z, and the Woodbury solve costs grow with #rows (one Laplacian
-// solve per row and a #rows² Gram matrix, §3.4). The seed attaches each bone vertex of the insertion
+// solve per row and a #rows² Gram matrix, §3.4). Wang et al. 2021 attaches each bone vertex of the insertion
 // (§4.1.2); a bone surface from a CT has one vertex per millimetre or so, and the gluteus medius on the
 // test CT's hip bone takes 1,225 of them, 3,675 rows, for a template whose boundary triangles hold far
 // fewer vertices. The attachments' material points and targets never change, so their sum is a fixed

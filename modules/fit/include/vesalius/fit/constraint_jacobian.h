@@ -1,4 +1,4 @@
-// The constraint rows of the equilibrium Jacobian, Z = √c A J (#C by 6#T; seed 002 eqs. 10-12), kept as
+// The constraint rows of the equilibrium Jacobian, Z = √c A J (#C by 6#T; Wang et al. 2021, eqs. 10-12), kept as
 // its two factors Z = −Wᵀ G: W = K⁻¹ (√c A)ᵀ (3#V by #C, dense: #C solves with K) and G = ∂f/∂s (3#V by
 // 6#T, sparse: 72 entries a tet). Z itself is dense and about 2#T/#V times larger than W: 450 rows on a
 // 39,000-tet template are 840 MB as Z, 100 MB as W and 34 MB as G. A product through the factors costs

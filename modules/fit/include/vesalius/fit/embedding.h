@@ -1,5 +1,5 @@
 // Embedding a surface in a template tet mesh and carrying it along with the tet mesh's deformation
-// (seed 002 §4.3: the textured liver surface embedded in the template tet mesh and "transformed with the
+// (Wang et al. 2021, §4.3: the textured liver surface embedded in the template tet mesh and "transformed with the
 // shape deformation of the tet mesh").
 //
 // Each surface vertex is embedded in the rest tet mesh (core/tet_embedding.h) and carried to the fitted

@@ -1,5 +1,5 @@
 // The Jacobian of the equilibrium with respect to the plastic parameters, used without forming it
-// (seed 002 eqs. 10 and 12): J = dx/ds = −K⁻¹ G with K = ∂f/∂x (3#V by 3#V) and G = ∂f/∂s (3#V by 6#T).
+// (Wang et al. 2021, eqs. 10 and 12): J = dx/ds = −K⁻¹ G with K = ∂f/∂x (3#V by 3#V) and G = ∂f/∂s (3#V by 6#T).
 // J is dense (3#V by 6#T); the fitter needs only Z = √c A J for the few constraint rows, so K is
 // factored once and solved for the 3#C columns of (√c A)ᵀ at once: Z = −(K⁻¹ (√c A)ᵀ)ᵀ G, kept as
 // those two factors (constraint_jacobian.h).

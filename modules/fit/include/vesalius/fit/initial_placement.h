@@ -1,4 +1,4 @@
-// Initial placement of a template (seed 002 Fig. 1 starts from a rigidly aligned template): a similarity
+// Initial placement of a template (Wang et al.'s Fig. 1 starts from a rigidly aligned template): a similarity
 // transform from template space to the scan. With three or more landmark pairs, the least-squares
 // similarity of the pairs (Umeyama 1991). Otherwise a similarity ICP of the template surface to the ICP
 // markers, started from each of the four proper principal-axis alignments of the surface and the marker

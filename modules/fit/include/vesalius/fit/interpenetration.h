@@ -1,7 +1,7 @@
-// Removing interpenetrations between fitted organs that touch (seed 002 §4.1.4, Fig. 19).
+// Removing interpenetrations between fitted organs that touch (Wang et al. 2021, §4.1.4, Fig. 19).
 //
 // Organs are fitted one at a time, so two that touch (muscles in continuous contact) overlap where the
-// markers between them were imprecise. For a pair, as the seed does: the boundary vertices of each mesh
+// markers between them were imprecise. For a pair, as the paper does: the boundary vertices of each mesh
 // that lie inside the other's volume are found; each mesh's tets around them, grown by `rings` rings of
 // tets that share a vertex, form its contact region; an FEM solve on each region alone pushes the surfaces
 // apart, and nothing outside the regions moves.
@@ -9,14 +9,14 @@
 // The FEM solve: the region is a stable neo-Hookean body, stress-free in its fitted shape; its vertices
 // shared with the rest of the mesh are held by stiff springs (and put back exactly afterwards), and each
 // penetrating vertex is pulled by a spring to a target beyond the other mesh's surface. Deviation from the
-// seed, which runs a contact simulation: the contact is these penalty springs, re-aimed in rounds. A
+// paper, which runs a contact simulation: the contact is these penalty springs, re-aimed in rounds. A
 // vertex of one mesh inside the other aims for the other's nearest surface point, only half-way when the
 // other mesh penetrates this one too (both surfaces move, so they meet in the middle); rounds repeat
 // with the regions grown by newly penetrating vertices until no boundary vertex of either mesh lies
 // inside the other, or `maxRounds` have run.
 //
 // Chains (contact islands of several organs): the second mesh against the first, the third against the
-// first two, and so on, in order, as in the seed; repeated, since a later pair can push a mesh back into
+// first two, and so on, in order, as in the paper; repeated, since a later pair can push a mesh back into
 // an earlier one.
 #pragma once
 
@@ -27,7 +27,7 @@
 namespace vesalius::fit {
 
 struct InterpenetrationOptions {
-  int rings = 5;             // rings of tets added around the penetrating vertices' tets (the seed's 5-ring)
+  int rings = 5;             // rings of tets added around the penetrating vertices' tets (Wang et al.'s 5-ring)
   int maxRounds = 20;        // re-detections and solves at most
   double clearance = 0.05;   // mm: a pushed vertex aims this far beyond the other surface
   double poissonRatio = 0.45;

@@ -1,5 +1,5 @@
 // Plastic-strain fitting of a template tet mesh to markers picked on a scan (Wang, Matcuk, Barbič,
-// "Modeling of Personalized Anatomy using Plastic Strains", ACM TOG 40(2), 2021; seed 002).
+// "Modeling of Personalized Anatomy using Plastic Strains", ACM TOG 40(2), 2021).
 //
 // Unknowns: a symmetric plastic strain Fp(s) per tet (eq. 2) and the positions x in elastic equilibrium
 // under it (eqs. 1, 4). Objective (eq. 6): ½||L s||² + Σ_k c_k/2 ||A_k x + b_k||² over landmarks,
@@ -39,7 +39,7 @@ struct FitOptions {
   // (μ · volume^(1/3)); each spring gets an equal share.
   double attachmentStiffness = 10;
   // The elastic baseline's marker springs, each this many times μ · volume^(1/3): hard point constraints
-  // as in seed 002 Fig. 2.
+  // as in Wang et al. 2021, Fig. 2.
   double elasticMarkerStiffness = 1e3;
   double poissonRatio = 0.45;
   int constantStrainIterations = 10;
@@ -103,7 +103,7 @@ FitResult fitPlasticStrains(const TetMesh& templ, const MatrixX3d& x0, const Eig
                             const FitMarkers& markers, const FitOptions& options = {},
                             Progress* progress = nullptr);
 
-// The plain elastic baseline (seed 002 Fig. 2 and §3.8, "FEM static solver"): no plastic change, s0 kept;
+// The plain elastic baseline (Wang et al. 2021, Fig. 2 and §3.8, "FEM static solver"): no plastic change, s0 kept;
 // landmarks, ICP markers (re-projected until they settle) and attachments are stiff springs. Its spikes
 // under point constraints are what the plastic fit avoids.
 FitResult fitElastic(const TetMesh& templ, const MatrixX3d& x0, const Eigen::VectorXd& s0, const FitMarkers& markers,

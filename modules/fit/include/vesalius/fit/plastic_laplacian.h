@@ -1,5 +1,5 @@
 // The plastic strain Laplacian L and the invertible "base" matrix B = L² − Σ ψᵢψᵢᵀ of the Woodbury
-// search-direction solve (seed 002 Appendix A, eqs. 28-30; §3.4, eq. 13; §3.5, Singular Lemma (iii)).
+// search-direction solve (Wang et al. 2021, Appendix A, eqs. 28-30; §3.4, eq. 13; §3.5, Singular Lemma (iii)).
 //
 // Plastic strains s are 6#T long and TET-MAJOR: s.segment<6>(6 t) = (s1..s6) of tet t, the entries
 // (xx, xy, xz, yy, yz, zz) of the symmetric plastic deformation gradient. L applies the tet Laplacian Lsc

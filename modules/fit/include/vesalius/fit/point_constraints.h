@@ -1,4 +1,4 @@
-// The point terms of the fitting objective (seed 002 eq. 6 and Appendix F, eqs. 52-53):
+// The point terms of the fitting objective (Wang et al. 2021, eq. 6 and Appendix F, eqs. 52-53):
 //   Σ_k c_k/2 ||A_k x + b_k||²,  A_k = [w1 I3  w2 I3  w3 I3  w4 I3] S_k,  b_k = −target_k,
 // one per landmark, ICP marker and attachment. A constrained point is a material point: a tet and
 // barycentric weights of its corners (a boundary triangle's point has weight 0 at the fourth corner), so
@@ -38,7 +38,7 @@ Eigen::VectorXd constraintResiduals(const std::vector<PointConstraint>& constrai
 
 // Material points of a tet mesh (#P by 3 points in the rest positions restV) as constraints towards
 // `targets` (#P by 3) with weight c: each point takes the tet that holds it, or the nearest tet if it
-// lies outside (clamped barycentric coordinates), as seed 002 §4.1.2 embeds attachment points.
+// lies outside (clamped barycentric coordinates), as Wang et al. 2021, §4.1.2, embeds attachment points.
 std::vector<PointConstraint> embedMaterialPoints(const MatrixX3d& restV, const MatrixX4i& T,
                                                  const MatrixX3d& points, const MatrixX3d& targets, double c);
 

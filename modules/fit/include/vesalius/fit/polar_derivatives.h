@@ -1,4 +1,4 @@
-// Rotation of the polar decomposition and its first and second derivatives (seed 002 §3.7, eqs. 21-24;
+// Rotation of the polar decomposition and its first and second derivatives (Wang et al. 2021, §3.7, eqs. 21-24;
 // Appendix E, eqs. 46-51).
 //
 // Polar(F) = R with F = R S, S = sqrt(FᵀF) symmetric positive definite. The rotational stabilization

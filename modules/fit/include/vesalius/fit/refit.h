@@ -1,4 +1,4 @@
-// Refits (ours, beyond seed 002): the plastic fit run again with the shape it reached as a fresh template.
+// Refits (ours, beyond Wang et al. 2021): the plastic fit run again with the shape it reached as a fresh template.
 //
 // Why: where the template is far from the organ (the SOFA liver against the test CT's liver is 22 mm off
 // when placed), closest-point pulls crush tets to the plastic-stretch floor, and from then on the line
@@ -45,7 +45,7 @@ using Remesh = std::function<TetMesh(const TriMesh& fittedBoundary)>;
 FitMarkers carriedMarkers(const FitMarkers& markers, const TetMesh& rest, const MatrixX3d& fittedV);
 
 // A surface in the first round's rest (template) space carried through every round: by the template's
-// tets (embedding.h, seed 002 §4.3), then through each refit by a smooth displacement of its vertices
+// tets (embedding.h, Wang et al. 2021, §4.3), then through each refit by a smooth displacement of its vertices
 // (smooth_displacement.h) that moves it as the refit moved its boundary vertices. Embedding it in a
 // refit's tets instead tangles it where the refit crushed tets near the surface.
 TriMesh carriedSurface(const TriMesh& surface, const std::vector<FitRound>& rounds);

@@ -1,4 +1,4 @@
-// Stabilisation of un-attached objects (seed 002 §3.6, eqs. 19-20). Without attachments an equilibrium
+// Stabilisation of un-attached objects (Wang et al. 2021, §3.6, eqs. 19-20). Without attachments an equilibrium
 // is defined only up to a rigid motion (Nullspace Lemma), so the pose is fixed by two constraints on the
 // set D of constrained surface points (weights 1/|D|, material positions X_j in the template):
 //   centroid:  Σ w_j x_j − Σ w_j X_j = t                                   (19)
@@ -43,7 +43,7 @@ class RigidGauge {
 };
 
 // The six rigid motions of positions x (3#V): 3#V by 6, translations then rotations about the centroid
-// (the nullspace of the tangent stiffness at an equilibrium, seed 002 Nullspace Lemma).
+// (the nullspace of the tangent stiffness at an equilibrium, Wang et al. 2021, Nullspace Lemma).
 Eigen::MatrixXd rigidModes(const Eigen::VectorXd& x);
 
 }  // namespace vesalius::fit

@@ -1,4 +1,4 @@
-// ICP markers (seed 002 eq. 5, second sum): scan points that must lie on the deformed tet mesh's
+// ICP markers (Wang et al. 2021, eq. 5, second sum): scan points that must lie on the deformed tet mesh's
 // surface. Each Gauss-Newton iteration takes the closest surface point of every marker, fixed as a
 // barycentric combination of its triangle's vertices (as a point of the triangle's tet), as that
 // iteration's A_k (Appendix F).

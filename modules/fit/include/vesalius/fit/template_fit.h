@@ -1,5 +1,5 @@
 // A template organ fitted to markers picked on a scan, the whole job of `vesalius fit` (Wang, Matcuk,
-// Barbič, "Modeling of Personalized Anatomy using Plastic Strains", ACM TOG 40(2), 2021; seed 002):
+// Barbič, "Modeling of Personalized Anatomy using Plastic Strains", ACM TOG 40(2), 2021):
 //
 // 1. A surface template is tetrahedralized (meshing/template_tets.h: closed by its winding number first if
 //    it is not a closed 2-manifold, decimated as the tet target allows); a tet template is used as it is.
@@ -15,7 +15,7 @@
 // 5. The fitted tets (with each tet's smallest and largest plastic stretch), the fitted surface (a surface
 //    template's own triangles carried by the fit; after refits the last round's boundary, which the
 //    template's triangles follow only as closely as they are fine), a surface embedded in the template
-//    carried through every round (§4.3), and the measures the seed plots: per-marker errors and their
+//    carried through every round (§4.3), and the measures the paper plots: per-marker errors and their
 //    histogram (Fig. 16), the objective per iteration (Fig. 9), the minimum dihedral angles before and
 //    after (Fig. 17).
 //
@@ -52,7 +52,7 @@ struct TemplateFitOptions {
   // triangles when positive.
   meshing::TemplateTetsOptions tets;
   FitOptions solver;
-  RefitOptions refit;  // refits = 0: seed 002's fit alone; refits need the plastic fit (UsageError)
+  RefitOptions refit;  // refits = 0: Wang et al.'s fit alone; refits need the plastic fit (UsageError)
 };
 
 // A marker set and the name of where it came from, for messages.

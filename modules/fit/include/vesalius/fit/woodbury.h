@@ -1,4 +1,4 @@
-// The Gauss-Newton search direction: solve H y = h for H = L² + ZᵀZ (seed 002 §3.4, eqs. 11-14).
+// The Gauss-Newton search direction: solve H y = h for H = L² + ZᵀZ (Wang et al. 2021, §3.4, eqs. 11-14).
 //
 // H is 6#T by 6#T and dense (ZᵀZ is; Z is #C by 6#T, #C = 3 × constraints, a few hundred), so it is never
 // formed. WoodburySolver splits H = B + ẐᵀẐ with the invertible sparse-factored B = L² − Σ ψᵢψᵢᵀ and

@@ -1,13 +1,13 @@
 // The folder of an anatomy rig (core/anatomy_rig.h), as `vesalius rig` and `vesalius patient` write it and
 // `vesalius pose` reads it (docs/cli.md):
 //   DIR/rig.vtu        rest tet mesh of the body (mm, LPS); point data "bone" (column of the vertex's bone
-//                      in "weights", -1 for tissue), "weights" (#V by #B, seed 001 §3.3), with
+//                      in "weights", -1 for tissue), "weights" (#V by #B, Sujar et al. 2018, §3.3), with
 //                      `rig --cor-centres` "cor_centre" (#V by 3, centres of rotation, §3.5);
 //                      cell data "label" (1: body)
 //   DIR/bones.txt      the skeleton joint of each column of "weights", one name a line
 //   DIR/skeleton.bvh   the skeleton at rest (mm, LPS: written with no axis change), one frame of zeros;
 //                      BVH has no rest rotations, so its joints keep their positions with unrotated frames
-//   DIR/frames.txt     only for a skeleton with rotated rest frames (`rig --labels`, seed 001 §3.1): per
+//   DIR/frames.txt     only for a skeleton with rotated rest frames (`rig --labels`, Sujar et al. 2018, §3.1): per
 //                      joint "name" and its rest world rotation, 9 numbers row by row
 //   DIR/meshes/*       the meshes at rest (mm, LPS): skin.<ext> (the body surface the rig was built from)
 //                      and the tissue meshes under their own file names; each is posed under its name

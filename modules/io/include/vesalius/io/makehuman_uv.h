@@ -2,7 +2,7 @@
 // are base.obj's "body" group alone: its 13,380 vertices and 13,378 quads in base.obj's order
 // (body_vertex_index_map.txt is the identity), moved by shape targets, but written without uv. The group's
 // faces come first in base.obj, so its uv carry over face by face; every shape then shares MakeHuman's
-// texture layout, as the fat-thickness texture of seed 000 §5 needs.
+// texture layout, as the fat-thickness texture of Dicko et al. 2013, §5, needs.
 #pragma once
 
 #include "vesalius/core/mesh.h"

@@ -22,7 +22,7 @@
 namespace vesalius::io {
 
 // The group of the full-body reference's skull and jaw, which `reference full-body` cuts out of OpenSim's
-// torso body (seed 000 §8 gives each trunk bone a map of its own) and `rig --reference` moves with the torso.
+// torso body (Dicko et al. 2013, §8, gives each trunk bone a map of its own) and `rig --reference` moves with the torso.
 inline constexpr const char* kSkullGroup = "skull";
 
 // The file of a tissue in a reference folder, relative to it: "tissues/<name>.obj" with the name made safe

@@ -1,5 +1,5 @@
 // First and second derivatives of det(F) for a 3x3 F, used by stable neo-Hookean (J = det F) and by the
-// plastic volume V = |Fp| V0 (seed 002 Appendix B, eqs. 34 and 42). vec is column-major throughout fem.
+// plastic volume V = |Fp| V0 (Wang et al. 2021, Appendix B, eqs. 34 and 42). vec is column-major throughout fem.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 // Least-squares similarity (or rigid) transform between paired points (Umeyama, "Least-squares
 // estimation of transformation parameters between two point patterns", IEEE PAMI 13(4), 1991).
-// The fit uses it for the initial placement of a template (seed 002 Fig. 1 starts from a rigidly aligned
+// The fit uses it for the initial placement of a template (Wang et al.'s Fig. 1 starts from a rigidly aligned
 // template) and for the rotation-translation step of the un-attached block-coordinate descent (§3.6); the
 // transfer for the rigid and similarity steps of its registrations.
 #pragma once

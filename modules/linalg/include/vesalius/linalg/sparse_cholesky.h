@@ -1,6 +1,6 @@
 // Sparse symmetric positive-definite solves: factor once, solve many (CHOLMOD, supernodal).
 //
-// The fitter (seed 002 §3.4) factors the tangent stiffness once per iteration and solves for hundreds of
+// The fitter (Wang et al. 2021, §3.4) factors the tangent stiffness once per iteration and solves for hundreds of
 // right-hand sides; posing and transfer factor a Laplacian once and solve one column per bone. Analyse
 // the pattern once, refactor numerically when only the values change, and solve blocks of columns at
 // once (CHOLMOD's supernodal solve uses BLAS-3 on a block).

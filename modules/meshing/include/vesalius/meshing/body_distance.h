@@ -1,4 +1,4 @@
-// The signed distance to a closed body surface on which rules R5 and R6 (seed 000 §3: tissue inside the
+// The signed distance to a closed body surface on which rules R5 and R6 (Dicko et al. 2013, §3: tissue inside the
 // skin) are measured, shared by the transfer pipeline (patient/transfer_into_body.h: its bone maps and
 // `vesalius transfer`'s report) and `reference full-body` (its bones moved inside the skin), so that all
 // count "inside" alike.

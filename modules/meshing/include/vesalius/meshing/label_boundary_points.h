@@ -1,5 +1,5 @@
 // Points spread evenly over a label's boundary within its scan: the stand-ins for a radiologist's ICP
-// markers that `vesalius markers sample` writes (seed 002 §3.1, §4.1.1: points on the organ's boundary),
+// markers that `vesalius markers sample` writes (Wang et al. 2021, §3.1, §4.1.1: points on the organ's boundary),
 // and the points `vesalius markers suggest` places a template on.
 //
 // The boundary is the surface `vesalius surface` makes of the label (labelSurfaces, default options) less

@@ -14,7 +14,7 @@
 // they connect to, as no surface passes between two adjacent voxels that are not both near it.
 // Meshes that are not consistently oriented 2-manifolds, or whose pieces face different ways (cavities,
 // a piece inside out), keep OpenVDB's signs, which count everything unreachable from outside as inside.
-// The grid cap follows seed 001 §3.2, which keeps the voxelized body "always smaller than 250x700x120"
+// The grid cap follows Sujar et al. 2018, §3.2, which keeps the voxelized body "always smaller than 250x700x120"
 // voxels by choosing the voxel size (see CoveringGridOptions).
 // Accuracy measured in tests/meshing/mesh_volume_test.cpp and docs/methods/voxelization.md.
 #pragma once
@@ -46,7 +46,7 @@ Grid<float> meshSignedDistance(const TriMesh& mesh, const GridGeometry& grid,
 struct CoveringGridOptions {
   double voxelSizeMm = 1.0;  // wanted isotropic voxel size; grown only as far as the cap demands
   double marginMm = 5.0;     // free space around the meshes' bounding box on every side
-  // At most this many voxels along i, j, k. Seed 001 keeps its body image under 250x700x120 voxels,
+  // At most this many voxels along i, j, k. Sujar et al. 2018 keeps its body image under 250x700x120 voxels,
   // its x, y, z being width, height and depth of a standing body; in LPS that is i (left) 250,
   // j (posterior, depth) 120, k (superior, height) 700.
   Eigen::Vector3i maxSize = Eigen::Vector3i(250, 120, 700);

@@ -1,8 +1,8 @@
 // The cavities of a body: space outside its closed surface that is shut off from the outside once the
 // surface's openings narrower than a given width are sealed. MakeHuman's skin, like a real face, is a
 // surface whose mouth and nostrils are pockets reaching into the head; the teeth and the palate lie in
-// them, outside the surface, though inside the head by any anatomical account. Rules R5 and R6 of seed
-// 000 (tissue inside the skin) are measured against the body with its cavities.
+// them, outside the surface, though inside the head by any anatomical account. Rules R5 and R6 of
+// Dicko et al. 2013 (tissue inside the skin) are measured against the body with its cavities.
 //
 // Method: the morphological closing of the inside by a ball of diameter `openingMm` (dilation, then
 // erosion), then the background the closing encloses (not reachable from the grid's border through voxels

@@ -62,7 +62,7 @@ TriMesh surfaceOfLabel(const SharedLabelSurfaces& surfaces, Label id);
 // Where label `id` touches label `other`: the faces with `id` on one side and `other` on the other,
 // oriented out of `id`, with only the vertices they use (an open surface; empty when the two do not share
 // a voxel face); face attribute kLabel = id. A muscle's insertion on a bone is the bone's interface with
-// the muscle (seed 002 §4.1.2). Throws UsageError if either label is not in surfaces.ids or they are the same.
+// the muscle (Wang et al. 2021, §4.1.2). Throws UsageError if either label is not in surfaces.ids or they are the same.
 TriMesh interfaceOfLabels(const SharedLabelSurfaces& surfaces, Label id, Label other);
 
 }  // namespace vesalius::meshing

@@ -1,5 +1,5 @@
 // Points spread evenly over a surface: stand-ins for the ICP markers a radiologist picks on an organ's
-// boundary (seed 002 §3.1: "clear representative points on the organ boundary"; §4.1.1: ~50-100 per
+// boundary (Wang et al. 2021, §3.1: "clear representative points on the organ boundary"; §4.1.1: ~50-100 per
 // muscle, "as many reliable points as possible"), for tests and benchmarks of the organ fitter.
 //
 // Method: `candidates` points are drawn uniformly by area (a triangle with probability proportional to

@@ -8,7 +8,7 @@
 // variance of its vertices, or its enclosed volume, is below a millionth of its bounding box's diagonal
 // (or of its cube). A sphere encloses a tenth of that cube; a plate a hundredth of its width thick still
 // 3e-5. TetGen meshes the closed surface decimated to `faces` triangles, or as the tet target allows
-// (tet_budget.h); the caller carries the full surface's detail by embedding it in the tets (seed 002 §4.3).
+// (tet_budget.h); the caller carries the full surface's detail by embedding it in the tets (Wang et al. 2021, §4.3).
 #pragma once
 
 #include "vesalius/core/mesh.h"

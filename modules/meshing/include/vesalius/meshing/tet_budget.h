@@ -11,7 +11,7 @@
 // TetrahedralizeOptions::keepSurfaceOverBudget the surface is then given to TetGen to keep as it is (-Y:
 // 96,151 tets), when that gives fewer tets within the point budget. (Not for fits: a fitted liver's tets
 // made so gave a refit surface that TetGen could not mesh within its budget.) The caller keeps the full surface and carries its detail by embedding it in the coarse tets, as
-// seed 002 §4.3 fits a coarse tet mesh and carries the detailed surface.
+// Wang et al. 2021, §4.3, fits a coarse tet mesh and carries the detailed surface.
 #pragma once
 
 #include "vesalius/core/mesh.h"

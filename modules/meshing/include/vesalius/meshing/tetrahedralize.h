@@ -6,7 +6,7 @@
 // around them (Freitag and Ollivier-Gooch, IJNME 40, 1997); a bad tet with every vertex on a surface
 // first gets an inner edge split so that it has a vertex to move.
 //
-// Several closed surfaces that are nested or apart (a body with bones inside it, seed 001 §3.2) give one
+// Several closed surfaces that are nested or apart (a body with bones inside it, Sujar et al. 2018, §3.2) give one
 // conforming mesh: TetGen's region attributes (-A) mark every tet with the region it lies in, the region
 // of a surface being its inside less the surfaces nested in it. Each region is found from a seed point:
 // for each connected part of a surface, a ray from the centroid of one of its largest triangles is cast

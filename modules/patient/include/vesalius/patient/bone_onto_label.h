@@ -1,4 +1,4 @@
-// A reference bone brought onto the patient's bone label, keeping its mesh (seed 000 §8's per-bone
+// A reference bone brought onto the patient's bone label, keeping its mesh (Dicko et al. 2013, §8's per-bone
 // registration, with the patient's segmented bone as the target instead of the interpolated skin
 // displacement). The virtual patient's model (whole_model.h) holds, inside the scan's field of view, the
 // patient's own bones in the reference's meshes: the pelvis and femurs the rig poses are then the
@@ -16,7 +16,7 @@
 //     the mesh by `smoothing` Laplacian passes that halve each round (coarse to fine, as non-rigid ICP
 //     anneals its stiffness: Amberg et al., "Optimal step nonrigid ICP algorithms for surface
 //     registration", CVPR 2007).
-// Deviation: the seed registers each bone by one affine map (rule R1 keeps bones straight); a patient's
+// Deviation: Dicko et al. 2013 registers each bone by one affine map (rule R1 keeps bones straight); a patient's
 // bone differs from the reference's by more than an affine map, and its own label is the truth inside the
 // field of view, so the rounds follow the label there. Beyond it the moves fade to none, so a femur's
 // shaft and knee stay where the bone's placement put them.

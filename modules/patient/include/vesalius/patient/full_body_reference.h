@@ -1,12 +1,12 @@
-// The full-body reference of anatomy transfer (seed 000 §3): a MakeHuman skin with an OpenSim model's
-// bones and muscle path points placed inside it by seed 004's body frame and per-body similarity fits
+// The full-body reference of anatomy transfer (Dicko et al. 2013, §3): a MakeHuman skin with an OpenSim model's
+// bones and muscle path points placed inside it by the GRAPP 2012 paper's body frame and per-body similarity fits
 // (transfer/skeleton_placement.h). `vesalius reference full-body` writes it as a reference folder; the
 // virtual patient completes it into a patient's partial skin (reference_completion.h).
 //  1. The body frame (transfer/body_frame.h) from the skin and the MakeHuman rig's leg joints; the head-
 //     spine joint and the sagittal plane from it.
 //  2. The OpenSim bodies placed on the rig (Rajagopal 2016 to MakeHuman's default rig), the digits fitted
 //     one by one; each bone mesh a bone tissue whose group is its OpenSim body (the skull and jaw apart:
-//     seed 000 §8 gives each trunk bone a map of its own, and one trunk map scaled the skull with a
+//     Dicko et al. 2013, §8, gives each trunk bone a map of its own, and one trunk map scaled the skull with a
 //     muscular body's chest), trunk bodies (pelvis, torso) symmetric; each muscle path point a point fixed
 //     to its body's first mesh, each non-root body's origin a point "joint/BODY".
 //  3. Rule R6 for the reference itself: each unit of bones (a symmetric trunk group as one, every other

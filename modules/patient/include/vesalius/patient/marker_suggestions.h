@@ -1,4 +1,4 @@
-// ICP markers suggested where a scan has an edge near a roughly placed template organ (seed 002 §3.1,
+// ICP markers suggested where a scan has an edge near a roughly placed template organ (Wang et al. 2021, §3.1,
 // §4.1.1: points on the organ's boundary the fitted surface must pass through), for a radiologist to
 // accept; what `vesalius markers suggest` runs (docs/methods/marker-suggestions.md).
 //

@@ -1,4 +1,4 @@
-// An organ template fitted to a patient's organ label (seed 002): ICP markers spread over the label's
+// An organ template fitted to a patient's organ label (Wang et al. 2021): ICP markers spread over the label's
 // boundary inside the scan, as a radiologist would pick them, the template tetrahedralized within its tet
 // budget (meshing/tet_budget.h), placed by a similarity ICP to the markers (fit/initial_placement.h),
 // fitted by plastic strains (fit/plastic_fit.h), then fitted again from the shape reached while a marker
@@ -21,7 +21,7 @@ struct OrganFitOptions {
   int markers = 300;      // ICP markers spread over the label's boundary
   int seed = 1;           // of their spreading
   long targetTets = 5000; // tets of the template and of each refit (within 2x)
-  int refits = 3;         // refits after the first fit (0: seed 002's fit alone)
+  int refits = 3;         // refits after the first fit (0: Wang et al.'s fit alone)
 };
 
 struct OrganFit {

@@ -1,16 +1,16 @@
-// Fitted organs separated where they touch (seed 002 §4.1.4, Fig. 19). Each organ is fitted to its own
+// Fitted organs separated where they touch (Wang et al. 2021, §4.1.4, Fig. 19). Each organ is fitted to its own
 // label alone (organ_fit.h), so two organs that touch overlap where their markers disagree by a voxel or
 // two. Every pair is pushed apart by fit::removeInterpenetrations on the last round's fitted tets (each
 // mesh moved only in an FEM-solved contact region around its penetrating vertices; nothing else moves),
 // later organs against earlier ones, in sweeps until no pair penetrates. Each fit's `surface` becomes the
 // boundary of its moved tets, and its `carriedTemplate` moves with them: embedded in the fitted tets before
-// the separation and carried to their positions after it (fit/embedding.h, seed 002 §4.3), so a template
+// the separation and carried to their positions after it (fit/embedding.h, Wang et al. 2021, §4.3), so a template
 // vertex away from the contact regions stays where it was.
 //
 // The promise (fit/interpenetration.h): afterwards no boundary vertex of either organ of a pair lies in
 // a tet of the other, unless `solver.maxRounds` ran out first, which the report shows as vertices still
 // penetrating. A pushed vertex aims `solver.clearance` (0.05 mm by default) beyond the other's surface, so
-// where they were pushed the surfaces end up about that far apart. Deviations from the seed are fit's: penalty
+// where they were pushed the surfaces end up about that far apart. Deviations from Wang et al. 2021 are fit's: penalty
 // springs re-aimed in rounds stand in for a contact simulation. Only vertices are tested: a triangle of
 // one organ may still cross an edge of the other by less than an edge's sag.
 #pragma once

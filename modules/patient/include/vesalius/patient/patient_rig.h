@@ -1,4 +1,4 @@
-// The virtual patient made posable (seed 001): the rig of the patient's model, and the patient posed with it.
+// The virtual patient made posable (Sujar et al. 2018): the rig of the patient's model, and the patient posed with it.
 //
 // Two rigs (rigging/body_rig.h), both with bone weights and CoR centres of rotation:
 //  - rigWholeModel: the rig of the whole model (whole_model.h), as `rig --reference` makes it: the
@@ -10,7 +10,7 @@
 //    bones of the organ map (posing/skeleton_from_bones.h: pelvis from the hips and sacrum, the femurs, the
 //    lumbar vertebrae), every voxel of the CT's tissue classes or of the organ map.
 // A pose (posing/rig_poser.h) skins the tets, restores their volume, repairs the tets it inverts, carries
-// the meshes, and re-poses the scan and its organ map with the tets (posing/posed_volume.h, seed 001 §5).
+// the meshes, and re-poses the scan and its organ map with the tets (posing/posed_volume.h, Sujar et al. 2018, §5).
 #pragma once
 
 #include "vesalius/core/anatomy.h"

@@ -1,4 +1,4 @@
-// The virtual patient outside the scan's field of view (docs/virtual-patient.md; seed 000 §3-8): the
+// The virtual patient outside the scan's field of view (docs/virtual-patient.md; Dicko et al. 2013, §3-8): the
 // full-body reference (MakeHuman skin, OpenSim bones and muscle paths) completed into the patient.
 //  1. The reference skin registered onto the patient's partial skin, where the scan sees skin only (the
 //     field of view's cut pulls nothing), and continued smoothly beyond it
@@ -11,7 +11,7 @@
 //     beyond the scan is continued.
 //  3. The reference transferred into the completed skin (transfer_into_body.h: erosion §5, sub-fat
 //     registration, interpolation §7, bone registration §8).
-// Deviations, plainly: the seed completes its torso reference with a full body before transfer; here the
+// Deviations, plainly: Dicko et al. 2013 completes its torso reference with a full body before transfer; here the
 // patient's own scan is partial and the full body is fitted to it, so beyond the field of view the body
 // is the reference's, with the trunk's girth and pose (partial_skin_registration.h). Organ labels play no
 // part beyond their bones' surfaces in the alignment.

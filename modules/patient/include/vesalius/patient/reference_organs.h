@@ -4,9 +4,9 @@
 // (templates/reference-organs/) for buildFullBodyReference to add (FullBodySources::organs).
 //  1. The virtual patient of the CT with its labels and the full-body reference (virtual_patient.h): the
 //     reference completed into the CT's body and one model of it with, inside the field of view, the
-//     CT's organs (templates fitted by plastic strains, seed 002, pushed apart where they touch) and the
+//     CT's organs (templates fitted by plastic strains, Wang et al. 2021, pushed apart where they touch) and the
 //     labels' other organs and muscles as surfaces.
-//  2. That model carried back into the reference's own skin by the same transfer (seed 000 §7-8,
+//  2. That model carried back into the reference's own skin by the same transfer (Dicko et al. 2013, §7-8,
 //     transfer_into_body.h): the completion made the model's skin from the reference's (the same
 //     vertices), so it is taken back onto the reference's skin vertex by vertex, without erosion; each
 //     bone group of the model is registered onto the reference's own bones of that group (§8's per-bone

@@ -1,4 +1,4 @@
-// The anatomy a labelled CT shows by itself (seed 000 §3, Fig. 2.c): the body's outer surface as the skin,
+// The anatomy a labelled CT shows by itself (Dicko et al. 2013, §3, Fig. 2.c): the body's outer surface as the skin,
 // and every label of an organ/bone segmentation (TotalSegmentator's names, v1 or v2) as a closed tissue
 // surface of its kind. The torso reference of anatomy transfer (`vesalius reference torso`) and the
 // virtual patient's own anatomy inside the field of view (virtual_patient.h) are both this.
@@ -14,7 +14,7 @@
 
 namespace vesalius::patient {
 
-// Kind, bone group and symmetry of a TotalSegmentator label name, as seed 000 §8 moves bones: the trunk
+// Kind, bone group and symmetry of a TotalSegmentator label name, as Dicko et al. 2013, §8, moves bones: the trunk
 // (spine, sternum, pelvis, rib cage, skull) symmetrically, each vertebra a group of its own, the ribs and
 // sternum the rib cage, hips and sacrum the pelvis; paired limb bones freely; gluteal, iliopsoas and back
 // muscles are muscles; every other label an organ. Sets tissue.kind, .group, .symmetric from tissue.name.

@@ -1,4 +1,4 @@
-// The anatomy transfer after the skin registration (seed 000 §5, §7, §8, Fig. 2.b-f), as one pipeline:
+// The anatomy transfer after the skin registration (Dicko et al. 2013, §5, §7, §8, Fig. 2.b-f), as one pipeline:
 // given where every reference skin vertex lands on the target's skin and the target's fat there,
 //  1. erosion (§5, fat/erode_skin.h): the registered skin moved inwards by the fat thickness (none on the
 //     reference's cut vertices, which are not skin);

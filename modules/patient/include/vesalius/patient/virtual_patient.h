@@ -1,22 +1,22 @@
-// The virtual patient: one patient's CT in, that patient's anatomy out, by the seeds' methods in their
+// The virtual patient: one patient's CT in, that patient's anatomy out, by the papers' methods in their
 // order (docs/virtual-patient.md). buildVirtualPatient runs, on core types:
 //  1. segmentation: the CT's tissue classes (segmentation/ct_tissues.h); the skin is the body's outer
 //     surface, its vertices where the field of view cut the body marked as cut (scan_anatomy.h).
 //  2. fat: the subcutaneous fat thickness at every skin vertex from the shortest-path fat forests of the
-//     scan's skin and subcutaneous fat classes (seed 000 §5; fat/fat_forest.h, fat/thickness_at_vertices.h);
+//     scan's skin and subcutaneous fat classes (Dicko et al. 2013, §5; fat/fat_forest.h, fat/thickness_at_vertices.h);
 //     0 on the cut, which is not skin.
 //  3. the anatomy inside the field of view: with an organ/bone label map, each label as a closed tissue
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
-//     template fitted by plastic strains to markers on its label (seed 002; organ_fit.h), the fitted
-//     organs pushed apart where they touch (seed 002 §4.1.4; organ_separation.h). Without one, the scan's
+//     template fitted by plastic strains to markers on its label (Wang et al. 2021; organ_fit.h), the fitted
+//     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h). Without one, the scan's
 //     own bone class as one bone tissue.
 //  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
-//     partial skin and transferred into it (reference_completion.h; seed 000): a whole body around the scan.
+//     partial skin and transferred into it (reference_completion.h; Dicko et al. 2013): a whole body around the scan.
 //  5. the whole model (whole_model.h): the completed reference with, inside the field of view, the
 //     patient's bones (the reference's meshes placed on the labels by the transfer's per-bone registration,
-//     seed 000 §8 with the label as target, then refined onto them) and the patient's other tissues;
-//     seed 000's rules measured on it (transfer/anatomy_rules.h).
-//  6. the rig (patient_rig.h; seed 001) that carries the model: the whole model's own rig (its bone
+//     Dicko et al. 2013, §8 with the label as target, then refined onto them) and the patient's other tissues;
+//     Dicko et al.'s rules measured on it (transfer/anatomy_rules.h).
+//  6. the rig (patient_rig.h; Sujar et al. 2018) that carries the model: the whole model's own rig (its bone
 //     meshes, its skin), or without the reference the rig of the scan's body and the organ map's bones
 //     (the pelvis and femurs needed); posePatient then poses it.
 #pragma once
@@ -61,7 +61,7 @@ struct VirtualPatientOptions {
   const ReferenceAnatomy* fullBodyReference = nullptr;
   ReferenceCompletionOptions completion;
   // The whole model (whole_model.h); its groupLabels also name the labels the transfer's per-bone
-  // registration places each reference bone group on (seed 000 §8).
+  // registration places each reference bone group on (Dicko et al. 2013, §8).
   WholeModelOptions whole;
 };
 
@@ -82,7 +82,7 @@ struct VirtualPatient {
   std::vector<OrganPairSeparation> organSeparation;  // indices into fits; every pair, touching or not
   std::optional<ReferenceCompletion> completion;  // with options.fullBodyReference
   std::optional<WholeModel> whole;                // with the completion: the whole model
-  std::optional<transfer::AnatomyRules> rules;    // seed 000's rules on the whole model (anatomy_rules.h)
+  std::optional<transfer::AnatomyRules> rules;    // Dicko et al.'s rules on the whole model (anatomy_rules.h)
   // Carries model(). None without the whole model and an organ map holding the pelvis and femurs.
   std::optional<PatientRig> rig;
   std::string noRigBecause;  // why there is no rig, in the user's words

@@ -1,7 +1,7 @@
-// Bone regions of a tet mesh from a skeleton alone, for bodies without bone meshes (the rig of seed 001
-// §3.2 labels "bones' voxels" from the bone models; MakeHuman's body ships a skeleton but no bones).
+// Bone regions of a tet mesh from a skeleton alone, for bodies without bone meshes (the rig of Sujar et al. 2018,
+// §3.2, labels "bones' voxels" from the bone models; MakeHuman's body ships a skeleton but no bones).
 //
-// Deviation from the seed, stated: each bone is a capsule around its segment (joint to tail) instead of
+// Deviation from the paper, stated: each bone is a capsule around its segment (joint to tail) instead of
 // a bone mesh. The segment is trimmed by endTrim of its length at both ends, so that the tissue around a
 // joint belongs to no bone and blends between its two neighbours (as cartilage does between real bones);
 // the capsule's radius is radiusFraction of the smallest distance from the trimmed segment to the skin,

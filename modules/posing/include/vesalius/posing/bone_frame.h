@@ -1,4 +1,4 @@
-// A bone's local frame from two directions (seed 001 §3.1: "We estimate two orthogonal vectors and the
+// A bone's local frame from two directions (Sujar et al. 2018, §3.1: "We estimate two orthogonal vectors and the
 // bone rotation centre from a set of annotated vertices. The third vector of the basis is calculated as
 // the cross product of the first two vectors").
 //

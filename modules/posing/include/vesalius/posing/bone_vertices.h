@@ -1,4 +1,4 @@
-// Bone regions of a labelled tet mesh (seed 001 §3.2-3.3: "the tetrahedral mesh is tagged using the
+// Bone regions of a labelled tet mesh (Sujar et al. 2018, §3.2-3.3: "the tetrahedral mesh is tagged using the
 // osseous model"; W_j = 1 inside the tets labelled j): the vertices of the tets of each bone's labels.
 //
 // Where two bones touch (a femoral head in its acetabulum at coarse voxels, a vertebra on the next), a
@@ -8,7 +8,7 @@
 // turn, and nothing could repair it (untangle_tets.h moves only free vertices). Skeletons list children
 // after their parents (core/skeleton.h), so the distal bone moves wholly rigidly and the proximal bone's
 // contact surface blends between the two. A bone that would lose every vertex keeps them. Deviation from
-// the seed, whose bone voxels are apart: it does not say.
+// Sujar et al. 2018, whose bone voxels are apart: it does not say.
 #pragma once
 
 #include "vesalius/core/label_map.h"

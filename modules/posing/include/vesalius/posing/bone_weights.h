@@ -1,4 +1,4 @@
-// Bone weights of a tet mesh by Laplace diffusion from the labelled bone vertices (seed 001 §3.3, eqs. 2-5).
+// Bone weights of a tet mesh by Laplace diffusion from the labelled bone vertices (Sujar et al. 2018, §3.3, eqs. 2-5).
 //
 // For each bone j, W_j solves ∇²W_j = 0 (eq. 4) with W_j = 1 on bone j's vertices and 0 on every other
 // bone's vertices, discretised with linear (P1) finite elements: A is the stiffness ("cotangent") matrix
@@ -6,7 +6,7 @@
 // every free vertex is connected to some bone (eq. 5). A is the same for every bone, so it is factored
 // once and all bones are solved as the columns of one right-hand side.
 //
-// The seed argues W ∈ [0, 1] and Σ_j W_j = 1 from the maximum principle (eqs. 2-3). The rows sum to 1
+// Sujar et al. 2018 argues W ∈ [0, 1] and Σ_j W_j = 1 from the maximum principle (eqs. 2-3). The rows sum to 1
 // exactly in the discrete solution too (the constant is in the kernel of K), but the discrete maximum
 // principle is only guaranteed when no tet has an obtuse dihedral angle: obtuse tets give positive
 // off-diagonal entries of K, and the weights can leave [0, 1] near them (a lone free vertex across a 147°

@@ -1,5 +1,5 @@
 // Skinning with optimized centres of rotation, the interactive step (Le & Hodgins, "Real-time skeletal
-// skinning with optimized centers of rotation", ACM TOG 35(4), 2016; seed 001 §3.5, "used in the
+// skinning with optimized centers of rotation", ACM TOG 35(4), 2016; Sujar et al. 2018, §3.5, "used in the
 // interactive step as it is shown in [11]").
 //
 // Vertex i with weights w_i and centre p_i (rotation_centers.h) takes

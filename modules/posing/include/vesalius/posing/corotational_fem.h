@@ -1,4 +1,4 @@
-// The physically based reference pose of seed 001 §5, Fig. 9: a static co-rotational linear FEM solve of
+// The physically based reference pose of Sujar et al. 2018, §5, Fig. 9: a static co-rotational linear FEM solve of
 // the tet mesh with the bone vertices as boundary conditions ("the boundary conditions ... are given by the
 // positions of the vertices labelled as bones"; "the internal forces [are computed] in a non-rotated
 // configuration. Then, the internal forces are rotated again into the final configuration [45]").
@@ -9,11 +9,11 @@
 // elastic forces f_t = R_t K_t (R_tᵀ x_t − X_t) are linear in x; equilibrium of the free vertices,
 //   Σ_t R_t K_t R_tᵀ x = Σ_t R_t K_t X   with the bone vertices given,
 // is one sparse SPD solve. The rotations are then updated from the new x and the solve repeated until no
-// vertex moves more than the tolerance (the seed's "solution is refined iteratively"). The pattern of the
+// vertex moves more than the tolerance (Sujar et al.'s "solution is refined iteratively"). The pattern of the
 // matrix never changes, so its symbolic factorisation is done once.
 //
 // Homogeneous material: Young's modulus scales K and cancels; only the Poisson ratio matters, near 0.5
-// to keep volume (the seed keeps it below 0.5 for numerical stability).
+// to keep volume (Sujar et al. 2018 keeps it below 0.5 for numerical stability).
 #pragma once
 
 #include "vesalius/core/mesh.h"

@@ -1,4 +1,4 @@
-// Least-squares cylinder through points: the axis of a hinge joint (seed 001 §3.1 estimates a bone's
+// Least-squares cylinder through points: the axis of a hinge joint (Sujar et al. 2018, §3.1, estimates a bone's
 // rotation centre and axes "from a set of annotated vertices"; for the knee, the femoral condyles facing
 // the tibia, whose posterior and distal arcs lie close to one cylinder about the flexion axis, and for the
 // ankle the talar trochlea facing the tibia; skeleton_from_bone_meshes.h).

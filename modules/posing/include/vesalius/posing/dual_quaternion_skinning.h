@@ -1,10 +1,10 @@
-// Dual quaternion skinning of a tet mesh's vertices (seed 001 §3.5; Kavan, Collins, Žára, O'Sullivan,
+// Dual quaternion skinning of a tet mesh's vertices (Sujar et al. 2018, §3.5; Kavan, Collins, Žára, O'Sullivan,
 // "Geometric skinning with approximate dual quaternion blending", ACM TOG 27(4), 2008).
 //
 // Each bone transform becomes a unit dual quaternion q̂_j = q_j + ε ½ t_j q_j; a vertex takes the
 // normalised blend Σ_j w_j q̂_j, a rigid motion, so joints do not collapse as in LBS. Before blending,
 // each q̂_j is negated if needed to lie in the hemisphere of the heaviest bone's q (antipodality).
-// Bent joints bulge instead, which the seed reports as volume gain (§5, Fig. 7). Measured as the signed
+// Bent joints bulge instead, which Sujar et al. 2018 reports as volume gain (§5, Fig. 7). Measured as the signed
 // volume of the posed tets it is none when the joint's axis passes through the centroid of the limb's
 // cross-section: every vertex turns rigidly about that axis (tests/posing/skinning_test.cpp says why).
 #pragma once

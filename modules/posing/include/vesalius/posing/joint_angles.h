@@ -1,4 +1,4 @@
-// A single pose from joint angles typed on the command line (seed 001 §3.5: "our implementation allows
+// A single pose from joint angles typed on the command line (Sujar et al. 2018, §3.5: "our implementation allows
 // animating the virtual model using direct kinematic").
 //
 // Syntax: one or more "joint=x,y,z" separated by ';' or white space, angles in degrees, e.g.

@@ -1,5 +1,5 @@
 // Which joint of a motion's skeleton drives which joint of ours: the name map of motion retargeting
-// (seed 001 §3.5 names retargeting as the way recorded motions reach the virtual skeleton; retarget.h).
+// (Sujar et al. 2018, §3.5, names retargeting as the way recorded motions reach the virtual skeleton; retarget.h).
 //
 // The file format is text, one pair a line, "# comment" lines and blank lines ignored:
 //     # source (motion) joint    target (skeleton) joint

@@ -1,4 +1,4 @@
-// Linear blend skinning of a tet mesh's vertices (seed 001 §3.5; Magnenat-Thalmann et al. 1988):
+// Linear blend skinning of a tet mesh's vertices (Sujar et al. 2018, §3.5; Magnenat-Thalmann et al. 1988):
 // v' = Σ_j w_j T_j v. Fast, but blending rotation matrices linearly shrinks the mesh near bent or
 // twisted joints (volume loss, "candy wrapper"), the baseline the other methods are measured against.
 // Computed as Σ_j w_j (T_j v), the same up to rounding.

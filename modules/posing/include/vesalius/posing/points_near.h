@@ -1,4 +1,4 @@
-// The labelled region of a bone where it faces another (seed 001 §3.1: joint centres and axes are fitted
+// The labelled region of a bone where it faces another (Sujar et al. 2018, §3.1: joint centres and axes are fitted
 // to "a set of annotated vertices"): the points of one bone within a distance of the other. The femoral
 // head is the femur's part near the hip bone, the condyles its part near the tibia, the talar trochlea the
 // talus's part near the tibia (skeleton_from_bones.h from voxels, skeleton_from_bone_meshes.h from meshes).

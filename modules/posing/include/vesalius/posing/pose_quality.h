@@ -1,4 +1,4 @@
-// What posing must not break (seed 001's claims, measured per pose): inverted or flat tets, posed/rest tet
+// What posing must not break (Sujar et al.'s claims, measured per pose): inverted or flat tets, posed/rest tet
 // volumes, the skin's volume change, and the tissue vertices that leave their tet.
 #pragma once
 

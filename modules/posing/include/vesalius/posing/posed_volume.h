@@ -1,4 +1,4 @@
-// Re-posing a scan or a label map with its tet mesh (seed 001 §5, Fig. 11: "we determine the pixels inside
+// Re-posing a scan or a label map with its tet mesh (Sujar et al. 2018, §5, Fig. 11: "we determine the pixels inside
 // each tetrahedron in the deformed configuration and then, they are mapped back to the non-deformed
 // configuration using the inverse of the displacement field ... we iterate over each tetrahedron's bounding
 // box and we use the barycentric coordinates to identify the pixels inside the tetrahedron").

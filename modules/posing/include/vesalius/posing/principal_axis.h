@@ -1,5 +1,5 @@
 // The long axis of a bone from its points: the eigenvector of the largest eigenvalue of their covariance
-// (principal component analysis), one of the two directions seed 001 §3.1 estimates per bone
+// (principal component analysis), one of the two directions Sujar et al. 2018, §3.1, estimates per bone
 // (bone_frame.h makes the frame), with the checks a bone frame needs (core/principal_axes.h computes it).
 #pragma once
 

@@ -1,5 +1,5 @@
 // Motion retargeting: a pose of a motion's skeleton (a BVH frame) carried onto our skeleton, as the
-// per-joint world transforms skinning consumes (seed 001 §3.5: "techniques such as retargeting [44] ...
+// per-joint world transforms skinning consumes (Sujar et al. 2018, §3.5: "techniques such as retargeting [44] ...
 // can be directly applied to our system").
 //
 // Method, per target joint t (parents first), with source joint s = map(t):

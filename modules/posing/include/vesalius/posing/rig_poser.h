@@ -1,8 +1,8 @@
-// A rigged anatomy ready to be posed frame after frame (seed 001 §3.4-3.5, §4): the rig (core/anatomy_rig.h)
+// A rigged anatomy ready to be posed frame after frame (Sujar et al. 2018, §3.4-3.5, §4): the rig (core/anatomy_rig.h)
 // and its meshes at rest, embedded once in the rest tets. Each pose then costs one skinning of the tets (LBS,
 // DQS, CoR or the co-rotational FEM reference), the restoration of the volume it loses or gains
 // (volume_restoration.h), the local repair of the tets it inverts or flattens (untangle_tets.h; both our
-// additions to the seed, on unless turned off; when the repair moved vertices, the volume its moves lost is
+// additions to Sujar et al. 2018, on unless turned off; when the repair moved vertices, the volume its moves lost is
 // restored once more and what that flattened repaired) and one carrying of the embedded meshes (the bone
 // meshes moved rigidly with their joints instead). `vesalius pose`,
 // `vesalius patient --pose` and the viewer `vesalius-poser` all pose through it, so the viewer shows what

@@ -1,12 +1,12 @@
 // Optimized centres of rotation of a tet mesh's vertices, the precomputation of CoR skinning (Le & Hodgins,
-// "Real-time skeletal skinning with optimized centers of rotation", ACM TOG 35(4), 2016; seed 001 §3.5,
+// "Real-time skeletal skinning with optimized centers of rotation", ACM TOG 35(4), 2016; Sujar et al. 2018, §3.5,
 // eqs. 6-7, which recasts their surface integral over tets).
 //
 // A vertex p should rotate like the parts of the body whose weights resemble its own. Its centre is
 //   cor_p = Σ_t s(w_p, w_t) V_t c_t / Σ_t s(w_p, w_t) V_t                                   (eq. 7)
 // over tets t with volume V_t, centroid c_t and w_t the mean of its corners' weights, and
 //   s(w_p, w_t) = Σ_{j<k} w_pj w_pk w_tj w_tk exp(-(w_pj w_tk - w_pk w_tj)² / σ²)          (eq. 6)
-// (the seed sums over j ≠ k, twice the same terms; the factor cancels in eq. 7).
+// (Sujar et al. 2018 sums over j ≠ k, twice the same terms; the factor cancels in eq. 7).
 //
 // Two ways to evaluate the sums:
 // - computeRotationCentersBruteForce: every vertex against every tet, O(#V #T #pairs); the reference.
@@ -40,7 +40,7 @@
 namespace vesalius::posing {
 
 struct RotationCenterOptions {
-  double sigma = 0.1;              // kernel width σ of eq. 6 (Le & Hodgins' value; the seed uses σ < 0.1)
+  double sigma = 0.1;              // kernel width σ of eq. 6 (Le & Hodgins' value; Sujar et al. 2018 uses σ < 0.1)
   double clusterWidth = 1.0 / 16;  // edge of a bone pair's cells grouping tets, in [1/1024, 1] (clustered only)
 };
 

@@ -1,10 +1,10 @@
-// A skeleton of the whole body from bone meshes placed in one model (seed 001 §3.1, rigging from labelled
+// A skeleton of the whole body from bone meshes placed in one model (Sujar et al. 2018, §3.1, rigging from labelled
 // regions of the bones: "we estimate two orthogonal vectors and the bone rotation centre from a set of
 // annotated vertices"), e.g. the OpenSim Rajagopal 2016 meshes assembled in its default pose: pelvis, legs,
 // trunk and arms. The counterpart of skeleton_from_bones.h, which does the pelvis, legs and lumbar spine
 // from a CT's label voxels.
 //
-// The seed annotates its vertex sets by hand (its supplementary Matlab code, which we do not have). Ours
+// Sujar et al. 2018 annotates its vertex sets by hand (its supplementary Matlab code, which we do not have). Ours
 // are found from the meshes alone, all in mm (LPS):
 // - Hip: the femoral head is the femur's vertices within `acetabulumDistance` of the pelvis's surface
 //   (points_near.h: the part facing the acetabulum); its least-squares sphere (sphere_fit.h) gives the
@@ -53,7 +53,7 @@
 //   from the hand's vertex mean towards the wrist.
 // Tails (core/skeleton.h): the knee centre for a femur, the ankle centre for a tibia, the elbow centre for
 // a humerus, the wrist centre for a forearm, none otherwise.
-// Deviations from the seed: regions by distance and extremity, not annotation; the ankle from the
+// Deviations from Sujar et al. 2018: regions by distance and extremity, not annotation; the ankle from the
 // malleoli, not from the talus (on the OpenSim meshes cylinders through the talar trochlea facing the
 // tibia missed the model's ankle centre by 5.6-13.7 mm and its axis by 10-25°, the malleoli by 2.4 mm and
 // 22°: the talus has 99 vertices); one lumbar joint and no vertebrae above it (OpenSim gives the lumbar

@@ -1,8 +1,8 @@
-// A skeleton from bones segmented in a scan (seed 001 §3.1, rigging from labelled bone regions): joint
+// A skeleton from bones segmented in a scan (Sujar et al. 2018, §3.1, rigging from labelled bone regions): joint
 // centres and local frames computed from the labelled voxels of the pelvis, femurs and lumbar spine (the
 // labels TotalSegmentator gives a CT, as in testdata/ct-abdomen-pelvis).
 //
-// The seed designs the computation bone by bone (its supplementary Matlab code, which we do not have).
+// Sujar et al. 2018 designs the computation bone by bone (its supplementary Matlab code, which we do not have).
 // Ours, all points being voxel centres in mm (LPS); a label's boundary voxels are those with a 6-neighbour
 // of another label or outside the grid:
 // - Hip joint centres: the femoral head is the femur's boundary voxels within `acetabulumDistance` of the

@@ -1,4 +1,4 @@
-// Least-squares sphere through points: the rotation centre of a ball-and-socket joint (seed 001 §3.1:
+// Least-squares sphere through points: the rotation centre of a ball-and-socket joint (Sujar et al. 2018, §3.1:
 // "we estimate ... the bone rotation centre from a set of annotated vertices"; for the hip, the femoral
 // head's points facing the acetabulum, skeleton_from_bones.h).
 //

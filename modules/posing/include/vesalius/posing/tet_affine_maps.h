@@ -1,10 +1,10 @@
-// The affine map of each tet from its rest to its posed shape (seed 001 §3.5: "a constant transformation
+// The affine map of each tet from its rest to its posed shape (Sujar et al. 2018, §3.5: "a constant transformation
 // matrix can be calculated for each tetrahedron", applied on the GPU to the tissue vertices in the tet).
 //
 // With rest edges E = [x1-x0, x2-x0, x3-x0] and posed edges E', the map is x ↦ E' E⁻¹ (x - x0) + x0'.
 // Applied to a point embedded in the tet it gives exactly what barycentric interpolation of the posed
-// corners gives (core/tet_embedding.h); the maps are the form a renderer or a volume resampler wants (the
-// seed's posed volumes invert them per tet, §5).
+// corners gives (core/tet_embedding.h); the maps are the form a renderer or a volume resampler wants
+// (Sujar et al.'s posed volumes invert them per tet, §5).
 #pragma once
 
 #include "vesalius/core/mesh.h"

@@ -1,5 +1,5 @@
 // Local untangling of a skinned tet mesh: inverted or flat tets repaired by moving the free vertices around
-// them. Our addition to seed 001, whose skinning (§3.5) has no collision response: where a bent elbow or hip
+// them. Our addition to Sujar et al. 2018, whose skinning (§3.5) has no collision response: where a bent elbow or hip
 // folds the inside of the joint into itself, small tets invert, and the tissue they carry (tet_affine_maps.h)
 // is mirrored.
 //

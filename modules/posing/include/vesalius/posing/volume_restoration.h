@@ -1,6 +1,6 @@
 // Volume restoration of a skinned tet mesh: the volume skinning squeezes out of a bent joint (or adds to its
 // stretched side) put back where it was lost, by a smooth displacement of the tissue vertices. Our addition
-// to seed 001, whose skinning (§3.5) keeps volume only as far as DQS or CoR do: on MakeHuman's body in the
+// to Sujar et al. 2018, whose skinning (§3.5) keeps volume only as far as DQS or CoR do: on MakeHuman's body in the
 // deepest crouches of the CMU walk the belly and the groin, squeezed between the flexed spine, hips and
 // knees, lose 4-5 % of the body's volume with every method, the FEM reference too (docs/methods/posing.md).
 //

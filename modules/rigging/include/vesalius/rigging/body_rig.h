@@ -1,4 +1,4 @@
-// The posing rig of a body (seed 001 §3.1-3.5 preprocessing): a tet mesh of the inside of the skin with
+// The posing rig of a body (Sujar et al. 2018, §3.1-3.5 preprocessing): a tet mesh of the inside of the skin with
 // bone regions, bone weights (§3.3) and centres of rotation (§3.5), from one of three inputs:
 //  - a skin and a skeleton: the inside of the skin voxelized (bone_mesh_labels.h) and tetrahedralized within
 //    2x of the tet target (meshing/tet_budget.h), the bones capsules around the skeleton's segments
@@ -31,7 +31,7 @@ namespace vesalius::rigging {
 
 struct RigOptions {
   // Voxels of the inside image (skin, reference), or of the labels meshed (labels; coarser only), mm;
-  // grown if needed to keep the image under the seed's 250x120x700 voxels (§3.2).
+  // grown if needed to keep the image under Sujar et al.'s 250x120x700 voxels (§3.2).
   double voxelSize = 4.0;
   double margin = 15.0;      // labels: only the bones' box grown by this is meshed, mm
   long targetTets = 100000;  // about this many tets

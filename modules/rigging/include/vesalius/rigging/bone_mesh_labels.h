@@ -1,4 +1,4 @@
-// The labelled image of seed 001 §3.2 from meshes ("skin and bones voxelized into a labelled image"): a
+// The labelled image of Sujar et al. 2018, §3.2 from meshes ("skin and bones voxelized into a labelled image"): a
 // body's skin and its bone meshes voxelized on one grid, for `rig --reference` (and the skin's inside for
 // `rig --skin`).
 // - The body is the voxels inside the skin (meshInsideMask, mesh_volume.h: the skin must be closed, as

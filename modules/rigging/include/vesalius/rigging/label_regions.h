@@ -1,4 +1,4 @@
-// Nested region surfaces of a label map for TetGen (seed 001 §3.2: the inside of the body as one region,
+// Nested region surfaces of a label map for TetGen (Sujar et al. 2018, §3.2: the inside of the body as one region,
 // its bones nested in it), shared by `tetmesh --labels [--body]` and `rig --labels`.
 //
 // The body is every labelled voxel with its holes filled (air pockets such as bowel gas are inside), as
@@ -9,7 +9,7 @@
 // - a label voxel next to a voxel of another chosen label listed later is dropped, so touching labels (a
 //   femoral head in its acetabulum, a vertebra on the next) are a voxel apart and the later one keeps its
 //   voxels whole (rig: the distal bone, which moves rigidly as a whole).
-// Deviation from the seed: its bone voxels are apart by construction; it does not say how.
+// Deviation from Sujar et al. 2018: its bone voxels are apart by construction; it does not say how.
 #pragma once
 
 #include "vesalius/core/label_map.h"

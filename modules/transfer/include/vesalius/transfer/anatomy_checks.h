@@ -1,4 +1,4 @@
-// The anatomical rules of seed 000 (§3, R1–R7) as numbers, for the transfer report and its tests.
+// The anatomical rules of Dicko et al. 2013 (§3, R1–R7) as numbers, for the transfer report and its tests.
 #pragma once
 
 #include "vesalius/core/anatomy.h"

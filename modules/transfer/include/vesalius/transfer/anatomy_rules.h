@@ -1,7 +1,7 @@
-// The anatomical rules of seed 000 (Dicko et al. 2013, §3: R1 bones straight, R2 the trunk symmetric, R5
+// The anatomical rules of Dicko et al. 2013 (§3: R1 bones straight, R2 the trunk symmetric, R5
 // and R6 tissue kept inside the body, with no structure lost) measured on a whole anatomy, for
-// `vesalius transfer`'s report and the virtual patient's. The seed states the rules and builds its
-// transfer to keep them; it measures none. Interpenetration is not among the seed's rules; the virtual
+// `vesalius transfer`'s report and the virtual patient's. The paper states the rules and builds its
+// transfer to keep them; it measures none. Interpenetration is not among the paper's rules; the virtual
 // patient asks for it (no two tissues into one another by more than 1 mm). What is measured, per rule:
 //  - outside (R5, R6): tissue vertices outside the skin, by the body's signed distance with its cavities
 //    counted as inside (meshing/body_distance.h), as the transfer's bone maps count "inside". Of those,
@@ -10,7 +10,7 @@
 //    reference: those outside the reference's own skin already, and those pushed out (inside the
 //    reference's skin, outside the transferred one), `deepMm` or more deep before apart.
 //  - folds: det(I + ∇u) of the displacement field (displacement_field.h, jacobianDeterminant): the
-//    seed's condition for organs not to intersect (§8).
+//    paper's condition for organs not to intersect (§8).
 //  - symmetry (R2): the trunk's bones (tissues marked symmetric, each group as one mesh, a bone with no
 //    group as its own) mirrored in the anatomy's sagittal plane: mirrorAsymmetry (anatomy_checks.h).
 //  - straightness (R1): the long bones' (isLongBone on the reference mesh; not the trunk's) centre-line

@@ -1,4 +1,4 @@
-// Anatomy transfer (seed 000 §7–8, Fig. 2.d–f): a reference anatomy carried into a target body, given
+// Anatomy transfer (Dicko et al. 2013, §7–8, Fig. 2.d–f): a reference anatomy carried into a target body, given
 // where every reference skin vertex lands in the target (skin registration §4, then erosion §5).
 //
 //   1. Interpolation (§7): the skin displacement, fixed on the skin, is extended harmonically into the
@@ -14,8 +14,8 @@
 //      bones (bone_registration.h).
 //      Given the target's eroded skin as a signed distance, the fit is reweighted so that the bones stay
 //      inside it (rule R6): the springs of vertices the map puts outside, or within a margin, grow stiffer.
-//      What no affine map of the group brings inside is then bent inside (bones_warped_into_skin.h): the
-//      seed leaves collisions to "standard collision handling routines" (§8); a bend local to the
+//      What no affine map of the group brings inside is then bent inside (bones_warped_into_skin.h):
+//      Dicko et al. 2013 leaves collisions to "standard collision handling routines" (§8); a bend local to the
 //      vertices still outside, which leaves the rest of the bone on its map. A vertex goes as deep as it
 //      was in the reference, at most the margin; one outside the reference's own skin stays.
 //   3. Final interpolation (§7, Fig. 2.e): a second field fixed on the skin and on the registered bones;
@@ -25,7 +25,7 @@
 //      bone vertices within two cells of another group's bone, where the two groups' maps meet at a joint.
 //      Bones and the points fixed to them move by their affine maps, and bends, exactly (rules R1, R7).
 // The grid is the caller's (it covers the reference skin and every tissue), with the reference body's
-// inside mask on it; the field runs in reference space, as the seed's.
+// inside mask on it; the field runs in reference space, as Dicko et al.'s.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
@@ -92,7 +92,7 @@ struct BoneGroupMap {
 
 struct TransferredAnatomy {
   std::vector<MatrixX3d> tissues;      // per reference tissue: its vertices in the target (same rows)
-  std::vector<MatrixX3d> interpolated; // per tissue: after step 1 only (the seed's Fig. 4, left)
+  std::vector<MatrixX3d> interpolated; // per tissue: after step 1 only (Dicko et al.'s Fig. 4, left)
   MatrixX3d points;                    // per reference point
   std::vector<BoneGroupMap> boneGroups;
   Plane sagittal;                      // the target's sagittal plane

@@ -1,4 +1,4 @@
-// Skin registration with an articulated stage (seed 000 §4, extended): the reference skin is cut into
+// Skin registration with an articulated stage (Dicko et al. 2013, §4, extended): the reference skin is cut into
 // parts by its bones, each limb part turned about its joint onto the target in chain order, the parts'
 // transforms blended by smooth skin weights (linear blend skinning), and only then is the skin deformed
 // by §4's ICP with shape matching (skin_registration.h).
@@ -28,7 +28,7 @@
 //     its skin neighbours'; the articulated skin is Σ_p w_vp T_p(x_v) (linear blend skinning).
 //  5. §4's ICP with shape matching from the articulated skin, with it as the rest shape (no second
 //     alignment).
-// Deviations from the seed, stated plainly: §4 has no articulated stage; its characters are registered by
+// Deviations from Dicko et al. 2013, stated plainly: §4 has no articulated stage; its characters are registered by
 // ICP and shape matching alone (with manual landmarks where that fails). The parts come from the
 // reference's bones, not from a rig: no skin weights are needed beyond the skin and the bones. Limb parts
 // scale about their joints because limbs differ in length between people (the thin body's hand is

@@ -1,4 +1,4 @@
-// The body frame and the head of a standing human skin (seed 004, "Anatomically correct skeleton
+// The body frame and the head of a standing human skin ("Anatomically correct skeleton
 // alignment", GRAPP 2012, §3.1).
 //
 // - Transverse plane: its normal is the mean of the two legs' ankle→hip vectors (rough joints given).
@@ -16,7 +16,7 @@
 // Deviations, plainly:
 // - Signs: PCA leaves them open; the sagittal normal is made to point to the left hip and ankle, the
 //   frontal normal is transverse × sagittal (posterior, so that the frame is right-handed, LPS-like).
-// - The seed's text breaks off before it says how the joint is moved inside the transverse plane ("by
+// - The paper's text breaks off before it says how the joint is moved inside the transverse plane ("by
 //   looking at a real skull cut along the transverse plane ... the back ..."). Here the joint is put at
 //   `jointDepthFraction` of the nose slice's back-to-front extent, from the back, keeping its left-right
 //   position: 0.35 because in Rajagopal 2016's skull and spine meshes (testdata/skeleton-opensim) the

@@ -1,8 +1,8 @@
-// Bone registration (seed 000 §8): each bone moves by one affine map attracted to where the skin's
+// Bone registration (Dicko et al. 2013, §8): each bone moves by one affine map attracted to where the skin's
 // interpolated displacement puts it, so bones stay straight (rule R1) while they scale to the body;
 // trunk bones move by maps symmetric about the sagittal plane (rule R2).
 //
-// The seed attaches "all the voxels of the reference bone to a common affine frame" and attracts them to
+// Dicko et al. 2013 attaches "all the voxels of the reference bone to a common affine frame" and attracts them to
 // their interpolated positions by linear springs, integrated with an implicit solver. The springs' rest
 // state is the least-squares affine map
 //   min over (A, t) of  Σ_i |A p_i + t − q_i|²        (p_i on the reference bone, q_i its attractor),

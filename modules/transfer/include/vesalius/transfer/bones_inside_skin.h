@@ -1,6 +1,6 @@
 // A placed bone (or a group of bones that move as one) moved inside its skin by the smallest similarity
 // change: a translation, a turn and a uniform scale about the bones' centroid that bring every vertex a
-// margin inside. Seed 000 §3 asks of a reference anatomy that its tissues lie inside its skin (rules R5,
+// margin inside. Dicko et al. 2013, §3, asks of a reference anatomy that its tissues lie inside its skin (rules R5,
 // R6); the full-body reference's bones are placed by the skin's rig (skeleton_placement.h), which does not
 // look at the skin, so some poke through where the rig's joints sit near it (feet, face, lower back).
 //
@@ -12,10 +12,10 @@
 // joint rather than leave it. Each iteration measures the distances anew and linearises them along each
 // vertex's outward direction n_i: d_i changes by n_i · (δt + ω × (x_i − c) + δs (x_i − c)); the steps are
 // damped (Levenberg-Marquardt). The change starts from none, so a bone already a margin inside stays as it
-// is. A symmetric group (the trunk, seed 000 §8, rule R2) keeps its mirror symmetry: translation in the
+// is. A symmetric group (the trunk, Dicko et al. 2013, §8, rule R2) keeps its mirror symmetry: translation in the
 // sagittal plane, turn about its normal, scale about the centroid projected onto it. Caps
 // (InsideSkinOptions) bound the change where no similarity fits the bone inside (a bone larger than the
-// skin around it); its vertices then stay partly outside. Not in the seeds: seed 004 moves a rig's joints
+// skin around it); its vertices then stay partly outside. Not in the papers: the GRAPP 2012 paper moves a rig's joints
 // inside the skin (§3.2 onwards), not the bones; this is the same aim for bones placed by a given rig.
 #pragma once
 

@@ -1,10 +1,10 @@
 // What no similarity change of a bone (bones_inside_skin.h) brings inside the skin, bent inside: a
 // smooth displacement of the bones' space, zero beyond a radius of the vertices still outside, that moves
 // each of them a margin inside. For a reference anatomy built from a generic skeleton and a skin of other
-// proportions (rules R5, R6 for the reference itself, seed 000 §3): Rajagopal's clavicles and lower back
+// proportions (rules R5, R6 for the reference itself, Dicko et al. 2013, §3): Rajagopal's clavicles and lower back
 // ribs lie a few mm outside MakeHuman's neutral skin wherever the rest of the rib cage and its joints
 // allow it to sit, the toes and calcanei at the foot's sides (docs/methods/skeleton-alignment.md).
-// Not in the seeds.
+// Not in the papers.
 //
 // Method: rounds of kernel ridge regression. In each round the vertices outside the skin (distance d_i > 0)
 // ask to move by δ_i = −(d_i − w_i) n_i, n_i their outward direction and w_i the depth wanted (−m, the

@@ -1,9 +1,9 @@
-// The volumetric displacement field of anatomy transfer (seed 000 §7): displacements given at scattered
+// The volumetric displacement field of anatomy transfer (Dicko et al. 2013, §7): displacements given at scattered
 // points (skin vertices, bone vertices) become the fixed cells of a grid over the reference body, and the
 // Laplace interpolation (laplace_interpolation.h) fills the body's other cells, the three components in
 // one 3-wide solve with the one set-up. Any reference point then moves by trilinear sampling of the field.
 //
-// Where the seed is silent:
+// Where Dicko et al. 2013 is silent:
 //  - Domain: the cells inside the reference skin (a mask the caller computes, e.g. meshing's
 //    meshInsideMask) plus the fixed cells the points give; the rest of the grid is Excluded. Domain cells
 //    cut off from every fixed cell (a closed cavity) are Excluded too, as their values would be undefined.
@@ -12,7 +12,7 @@
 //    touches the skin) never mixes in cells that were not solved.
 //  - The Jacobian determinant det(I + ∇u) is measured by central differences at every free or fixed cell
 //    whose six neighbours are free or fixed; a positive minimum means the map is locally foldover-free
-//    (the seed's condition for organs not to intersect, §8).
+//    (Dicko et al.'s condition for organs not to intersect, §8).
 #pragma once
 
 #include "vesalius/core/grid.h"

@@ -1,7 +1,7 @@
-// Laplace interpolation on a regular grid (seed 000 §7, Eqs. 1–2): values given on the fixed cells are
+// Laplace interpolation on a regular grid (Dicko et al. 2013, §7, Eqs. 1–2): values given on the fixed cells are
 // extended into the free cells by solving
 //   ∇²f(x) = 0 at free cells,   f(x) = f̄ at fixed cells,
-// the "as linear as possible" interpolation the seed uses to carry skin (and later bone) displacements
+// the "as linear as possible" interpolation the paper uses to carry skin (and later bone) displacements
 // into the body, one displacement component per solve.
 //
 // Discretization: the 7-point Laplacian over voxel centres with the grid's spacing h = (hx, hy, hz) mm,
@@ -15,10 +15,10 @@
 //
 // Solvers (all matrix-free on the grid):
 //  - MultigridCG (default): CG preconditioned by one multigrid V-cycle (McAdams et al. 2010, the
-//    "irregular boundaries" kind of multigrid the seed cites from Zhu et al. 2010). Robust to the thin,
+//    "irregular boundaries" kind of multigrid Dicko et al. 2013 cites from Zhu et al. 2010). Robust to the thin,
 //    irregular fixed shells of a skin.
 //  - Multigrid: V-cycles used as a stationary iteration.
-//  - ConjugateGradient: Jacobi-preconditioned CG, the seed's baseline (it used Eigen's CG, whose default
+//  - ConjugateGradient: Jacobi-preconditioned CG, Dicko et al.'s baseline (they used Eigen's CG, whose default
 //    preconditioner is the diagonal).
 // Multigrid design (docs/methods/laplace-interpolation.md): cell-centred coarsening by 2×2×2 blocks,
 // spacing doubled; a coarse cell is Fixed if any child is Fixed, else Free if any child is Free, else
@@ -35,7 +35,7 @@
 // with a CG (α, β, stopping) per component; each component comes out bitwise equal to solve(field) on it.
 // Speed (issue 7): kernels visit each grid row only between its first and last Free cell, so Excluded
 // space around a body costs no memory traffic; a red-black sweep is one pass over memory; restriction
-// is separable. Seed's 309×839×142 grid, one field: 31 s wall (15.7 s CPU) on the shared 2-core machine,
+// is separable. Dicko et al.'s 309×839×142 grid, one field: 31 s wall (15.7 s CPU) on the shared 2-core machine,
 // 13× faster than Jacobi-CG in the same run (bench_transfer).
 // Threads: smoothing, residuals and transfers run in parallel with TBB; every cell's update reads only
 // cells of the other colour or of another level, and dot products are summed per grid plane and then
@@ -53,7 +53,7 @@ namespace vesalius::transfer {
 
 enum class CellRole : std::uint8_t {
   Free,      // unknown: the discrete Laplacian is zero here
-  Fixed,     // Dirichlet: the value is given (seed 000 §7 Eq. 2)
+  Fixed,     // Dirichlet: the value is given (Dicko et al. 2013, §7 Eq. 2)
   Excluded,  // not part of the domain (e.g. outside the body): no unknown, no flux to its neighbours
 };
 

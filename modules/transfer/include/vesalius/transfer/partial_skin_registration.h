@@ -1,5 +1,5 @@
 // Registration of a whole source skin (a full-body reference) onto a partial target skin: a scan's body
-// surface, closed by caps where its field of view cut the body (seed 000 §4's registration; its §2 notes
+// surface, closed by caps where its field of view cut the body (Dicko et al. 2013, §4's registration; its §2 notes
 // that robustness to partial data comes from extrinsic, Cartesian correspondences, as here).
 //
 // Only skin pulls. The cut (the caps, ReferenceAnatomy::skinCutVertices) is where the scan stopped, not

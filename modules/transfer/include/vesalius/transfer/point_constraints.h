@@ -1,7 +1,7 @@
 // Dirichlet values from scattered points: how the skin vertices' displacements (and later the bones')
-// become the fixed cells f̄ of the Laplace interpolation (seed 000 §7, Eq. 2).
+// become the fixed cells f̄ of the Laplace interpolation (Dicko et al. 2013, §7, Eq. 2).
 //
-// The seed fixes "the boundary" of its grid without saying how mesh vertices map to voxels. Two ways:
+// Dicko et al. 2013 fixes "the boundary" of its grid without saying how mesh vertices map to voxels. Two ways:
 //  - Trilinear (default): each point spreads its value over the 8 voxel centres around it with its
 //    trilinear weights; a voxel takes the weighted mean of the points that reach it and becomes Fixed.
 //    Every point counts (none is lost when several share a voxel), a voxel's value is a local average of

@@ -1,5 +1,5 @@
 // A reference anatomy's skin registered onto a target body's skin, as `vesalius transfer` does it
-// (seed 000 §4): ICP with shape matching (skin_registration.h), after the articulated stage
+// (Dicko et al. 2013, §4): ICP with shape matching (skin_registration.h), after the articulated stage
 // (articulated_registration.h: the skin cut into parts by its bones, limbs turned about their joints)
 // unless options.articulated is false; landmarks, if any, are §4's optional manual initialisation.
 #pragma once

@@ -1,6 +1,6 @@
 // Placing a musculoskeletal model's bones inside a skin by one similarity transform per body (the
-// full-body reference anatomy of seed 000 §3: the skin with bones and muscle path points inside it). The
-// skin side comes from seed 004's skeleton alignment (body_frame.h: body frame and head-spine joint) and
+// full-body reference anatomy of Dicko et al. 2013, §3: the skin with bones and muscle path points inside it). The
+// skin side comes from the GRAPP 2012 paper's skeleton alignment (body_frame.h: body frame and head-spine joint) and
 // the skin's rig (MakeHuman's joints); each body's joint centres are mapped onto the matching skin joints:
 //  - 3 or more point pairs: the least-squares similarity (Umeyama; linalg/similarity_transform.h);
 //  - 2 pairs (a long bone: proximal and distal joint): scale = ratio of the joint distances; rotation =
@@ -17,7 +17,7 @@
 // carpals, metacarpals and phalanges in one rigid body with straight fingers (Rajagopal 2016) cannot
 // follow a skin whose fingers are spread and curled (MakeHuman's), so each digit bone gets a similarity of
 // its own onto one skin bone (its head and tail), as a long bone onto its two joints.
-// This is not seed 004's joint-by-joint refinement of a rig (its §3.2 onwards moves joints inside the
+// This is not the GRAPP 2012 paper's joint-by-joint refinement of a rig (its §3.2 onwards moves joints inside the
 // skin); here the skin's rig is taken as given and the model's bones follow it.
 //
 // Model points are joint centres in the model's default pose, in LPS mm: a body's origin is the centre

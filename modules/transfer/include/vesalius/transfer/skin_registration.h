@@ -1,4 +1,4 @@
-// Registration of a source skin onto a target skin (seed 000 §4): a dense correspondence that moves every
+// Registration of a source skin onto a target skin (Dicko et al. 2013, §4): a dense correspondence that moves every
 // source vertex onto the target surface, so the source's topology and uv come along (the later steps
 // need source and target skins sharing one uv space).
 //

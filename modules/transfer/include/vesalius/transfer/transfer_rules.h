@@ -1,6 +1,6 @@
-// The anatomical rules of seed 000 (§3, R1–R7; anatomy_rules.h) on the result of a transfer
+// The anatomical rules of Dicko et al. 2013 (§3, R1–R7; anatomy_rules.h) on the result of a transfer
 // (anatomy_transfer.h): the transferred anatomy against the reference, with the final field's folds, and
-// R1 and R2 also for the bones as step 1's interpolation alone left them (the skin's field, the seed's
+// R1 and R2 also for the bones as step 1's interpolation alone left them (the skin's field, Dicko et al.'s
 // Fig. 4 left), so that a report shows what the bone registration (§8) changed.
 #pragma once
 

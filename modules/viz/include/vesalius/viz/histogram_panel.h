@@ -1,5 +1,5 @@
 // A histogram of values drawn as a panel of bars with its title, count, mean and maximum, to stand beside
-// the slices of a picture (vesalius fit: the ICP marker errors after the fit, as seed 002 Fig. 16 plots them).
+// the slices of a picture (vesalius fit: the ICP marker errors after the fit, as Wang et al.'s Fig. 16 plots them).
 #pragma once
 
 #include "vesalius/viz/rgb_image.h"
