@@ -260,7 +260,9 @@ std::string formatFcsv(const MarkerSet& set) {
     const Marker& m = set.markers[i];
     // Slicer writes the stored coordinates of a point without a position; ours are zero.
     const Eigen::Vector3d p = hasPosition(m.status) && m.position.allFinite() ? m.position : Eigen::Vector3d::Zero();
-    out += quoteCsvField(ids[i]) + "," + formatShortest(p.x()) + "," + formatShortest(p.y()) + "," +
+    // An id that begins with '#' is quoted, or its row would be read back as a header line.
+    const std::string id = quoteCsvField(ids[i]);
+    out += (id.rfind('#', 0) == 0 ? "\"" + id + "\"" : id) + "," + formatShortest(p.x()) + "," + formatShortest(p.y()) + "," +
            formatShortest(p.z()) + ",0,0,0,1," + (m.visible ? "1," : "0,") + (m.selected ? "1," : "0,") +
            (m.locked ? "1," : "0,") + quoteCsvField(m.label) + "," + quoteCsvField(m.description) + "," +
            quoteCsvField(m.associatedNodeID) + "," + std::to_string(statusCode(m.status)) + ",0\n";

@@ -269,6 +269,15 @@ TEST(RoundTrip, FcsvKeepsLabelsStatusesFlags) {
   }
 }
 
+// A row whose id begins with '#' must not come back as a header line (found by fuzz_fcsv).
+TEST(RoundTrip, FcsvKeepsAnIdThatBeginsWithAHash) {
+  MarkerSet in = sampleSet();
+  in.markers.front().id = "# sy";
+  const MarkerSet out = io::parseFcsv(io::formatFcsv(in), "hash.fcsv", MarkerKind::Landmark);
+  ASSERT_EQ(out.markers.size(), in.markers.size());
+  EXPECT_EQ(out.markers.front().id, "# sy");
+}
+
 TEST(RoundTrip, CsvKeepsLabelsKindsStatuses) {
   const MarkerSet in = sampleSet();
   const std::string path = outputPath("round.csv");
