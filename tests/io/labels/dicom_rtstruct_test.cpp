@@ -7,6 +7,8 @@
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 
+#include "test_ct_3slice.h"
+
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
@@ -31,7 +33,7 @@ namespace fs = std::filesystem;
 
 const std::string kRtStructSopClass = "1.2.840.10008.5.1.4.1.1.481.3";
 const std::string kData = std::string(VESALIUS_TESTDATA);
-const std::string kCtFolder = kData + "/dicom/ct-3slice-dcmqi/ct-3slice";
+const std::string& kCtFolder = test::kCt3SliceFolder;
 
 std::string fresh(const std::string& name) {
   const fs::path dir = fs::path(VESALIUS_TEST_OUTPUT);
@@ -251,12 +253,7 @@ TEST(DicomRtStruct, RefersToTheSourceSeries) {
   ASSERT_TRUE(source);
   ASSERT_EQ(source->images.size(), 3u);
   const Image scan = readScan(kCtFolder);
-  LabelMap map;
-  map.labels = Grid<Label>(scan.geometry, 0);
-  for (std::size_t n = 0; n < scan.values.size(); ++n)
-    map.labels.values[n] = scan.values[n] > 200 ? 2 : scan.values[n] > -200 ? 1 : 0;
-  map.table.add({1, "soft_tissue", {{200, 100, 90}}});
-  map.table.add({2, "bone", {{240, 240, 220}}});
+  const LabelMap map = test::softTissueAndBone(scan);
   const std::string path = fresh("ct-3slice.rtstruct.dcm");
   writeDicomRtStruct(path, map, &*source);
   ContourCounts counts;

@@ -4,6 +4,8 @@
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 
+#include "test_ct_3slice.h"
+
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
@@ -25,7 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kSegSopClass = "1.2.840.10008.5.1.4.1.1.66.4";
-const std::string kCtFolder = std::string(VESALIUS_TESTDATA) + "/dicom/ct-3slice-dcmqi/ct-3slice";
+const std::string& kCtFolder = test::kCt3SliceFolder;
 
 std::string fresh(const std::string& name) {
   const fs::path dir = fs::path(VESALIUS_TEST_OUTPUT);
@@ -181,12 +183,7 @@ TEST(DicomSeg, RefersToTheSourceSeries) {
   ASSERT_TRUE(source);
   ASSERT_EQ(source->images.size(), 3u);
   const Image scan = readScan(kCtFolder);
-  LabelMap map;
-  map.labels = Grid<Label>(scan.geometry, 0);
-  for (std::size_t n = 0; n < scan.values.size(); ++n)
-    map.labels.values[n] = scan.values[n] > 200 ? 2 : scan.values[n] > -200 ? 1 : 0;
-  map.table.add({1, "soft_tissue", {{200, 100, 90}}});
-  map.table.add({2, "bone", {{240, 240, 220}}});
+  const LabelMap map = test::softTissueAndBone(scan);
   const std::string path = fresh("ct-3slice.dcm");
   writeDicomSeg(path, map, &*source);
 
