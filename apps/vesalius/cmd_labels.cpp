@@ -7,10 +7,10 @@
 // components is not offered: label_ops.h gives the largest one, or all components above a size.
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 #include "labels_outputs.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/io/image_io.h"
 #include "vesalius/segmentation/label_edit.h"
 #include "vesalius/segmentation/label_mask_edit.h"
 #include "vesalius/segmentation/label_ops.h"
@@ -30,7 +30,7 @@ namespace seg = segmentation;
 using E = seg::MaskEdit;
 
 struct LabelsOptions {
-  std::string labels, table, out, dicomSeries;
+  std::string labels, table, out, dicomSeries, grid;
   std::vector<std::string> selected;  // --label, or --to-label for crop
   std::string into;                   // merge: ID[:NAME]
   std::vector<std::string> maps;      // relabel: OLD=NEW
@@ -47,8 +47,8 @@ struct LabelsOptions {
 // The map being edited with the action's options.
 struct Input : LabelsInput {
   const LabelsOptions& o;
-  explicit Input(const LabelsOptions& options)
-      : LabelsInput(options.labels, io::readLabelMap(options.labels, options.table)), o(options) {}
+  Input(const LabelsOptions& op, io::Report& report)
+      : LabelsInput(op.labels, op.grid, readLabelsOption(op.labels, op.table, op.grid, report)), o(op) {}
 };
 
 struct Edit {
@@ -202,7 +202,7 @@ void runLabels(const LabelsOptions& o, const std::string& action, const Action& 
   if (!o.table.empty()) run.report.input("table", o.table);
   refuseInputsAsOutputs(o.labels, o.table, o.out);
   checkDicomSeriesOption(o.dicomSeries, o.out);
-  const Input in(o);
+  const Input in(o, run.report);
   Edit e;
   {
     auto timer = run.report.time(action);
@@ -216,7 +216,7 @@ void addAction(CLI::App& labels, const std::string& name, const std::string& des
                const Action& act, const std::function<void(CLI::App&, LabelsOptions&)>& addOwn) {
   auto o = std::make_shared<LabelsOptions>();
   CLI::App* cmd = labels.add_subcommand(name, description);
-  cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage, .seg.nrrd, DICOM SEG)")->required();
+  addLabelsOption(*cmd, o->labels, o->grid, kLabelsHelp)->required();
   cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
   addOwn(*cmd, *o);
   cmd->add_option("--out", o->out, kOutHelp)->required();

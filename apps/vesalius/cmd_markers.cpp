@@ -4,6 +4,7 @@
 // between 3D Slicer (.mrk.json, .fcsv), plain CSV and ITK-SNAP (.annot) files.
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 #include "markers_outputs.h"
 
 #include "vesalius/core/error.h"
@@ -27,7 +28,7 @@ namespace vesalius::cli {
 namespace {
 
 struct SampleOptions {
-  std::string labels, table, label, out;
+  std::string labels, grid, table, label, out;
   int count = 100;
   std::uint64_t seed = 1;
   CommonOptions common;
@@ -79,7 +80,7 @@ void runSample(const SampleOptions& o, CommandRun& run) {
   run.report.parameter("label", o.label);
   run.report.parameter("count", o.count);
   run.report.parameter("seed", o.seed);
-  const LabelMap map = io::readLabelMap(o.labels, o.table);
+  const LabelMap map = readLabelsOption(o.labels, o.table, o.grid, run.report);
   const Label id = resolveLabel(map, o.label, o.labels);
   const LabelEntry* entry = map.table.find(id);
   const std::string name = entry ? entry->name : std::to_string(id);
@@ -97,7 +98,7 @@ void addSample(CLI::App& markers) {
   auto o = std::make_shared<SampleOptions>();
   CLI::App* cmd = markers.add_subcommand(
       "sample", "ICP markers spread evenly over a label's boundary (stand-ins for a radiologist's picks)");
-  cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage)")->required();
+  addLabelsOption(*cmd, o->labels, o->grid, kLabelsHelp)->required();
   cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
   cmd->add_option("--label", o->label, "Label id or name whose boundary gets the markers")->required();
   cmd->add_option("--count", o->count, "Number of markers")->check(CLI::Range(1, 10000))->capture_default_str();
@@ -114,7 +115,7 @@ void addSample(CLI::App& markers) {
 }
 
 struct SuggestOptions {
-  std::string scan, templ, labels, table, label, markers, out, placedOut;
+  std::string scan, templ, labels, grid, table, label, markers, out, placedOut;
   patient::MarkerSuggestionOptions method;  // all but the polarity and the template's name, from the options
   int icpPoints = 500;
   std::string polarity = "auto";
@@ -150,7 +151,7 @@ MatrixX3d placementTargets(const SuggestOptions& o, io::Report& report) {
   }
   report.input("labels", o.labels);
   report.parameter("label", o.label);
-  const LabelMap map = io::readLabelMap(o.labels, o.table);
+  const LabelMap map = readLabelsOption(o.labels, o.table, o.grid, report);
   const Label id = resolveLabel(map, o.label, o.labels);
   const meshing::LabelBoundaryPoints spread = meshing::labelBoundaryPoints(map, id, {o.icpPoints, o.method.seed});
   if (!spread.hasVoxels) throw BadInput(o.labels, "label '" + o.label + "' has no voxels");
@@ -213,7 +214,8 @@ void addSuggest(CLI::App& markers) {
   cmd->add_option("--scan", o->scan, "Scan (NIfTI, NRRD, MetaImage, DICOM)")->required();
   cmd->add_option("--template", o->templ, "Template surface (closed mesh: .obj, .stl, .ply, .vtk, .vtp), any frame")
       ->required();
-  cmd->add_option("--labels", o->labels, "Label map to place the template on (similarity ICP to a label's boundary)");
+  addLabelsOption(*cmd, o->labels, o->grid,
+                  "Label map to place the template on (similarity ICP to a label's boundary)");
   cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
   cmd->add_option("--label", o->label, "Label id or name the template is placed on");
   cmd->add_option("--markers", o->markers, "Rough markers on the organ to place the template on, instead of labels");

@@ -3,6 +3,7 @@
 // skin (rigging/body_rig.h), written as a rig folder with the meshes it will carry (io/anatomy_rig_io.h).
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 #include "posing_session.h"
 
 #include "vesalius/core/error.h"
@@ -26,7 +27,7 @@ namespace vesalius::cli {
 namespace {
 
 struct RigOptions {
-  std::string skin, skeleton, baseMesh, out, space = "auto", labels, labelTable, reference;
+  std::string skin, skeleton, baseMesh, out, space = "auto", labels, grid, labelTable, reference;
   posing::SkeletonFromBonesOptions bones;
   // With the femurs placed on the pelvis's hip centres (skeleton_placement.h), the default 6 mm finds 20
   // (right) and 70 (left) femoral head vertices, centres 1.6 and 0.8 mm from the placed femurs' own.
@@ -115,7 +116,7 @@ void runLabelRig(const RigOptions& o, CommandRun& run) {
   run.report.input("labels", o.labels);
   reportParameters(o, run.report);
   run.report.parameter("margin_mm", o.rig.margin);
-  const LabelMap map = io::readLabelMap(o.labels, o.labelTable);
+  const LabelMap map = readLabelsOption(o.labels, o.labelTable, o.grid, run.report);
   posing::SkeletonFromBonesOptions bones = o.bones;
   if (!std::isnan(o.acetabulumDistance)) bones.acetabulumDistance = o.acetabulumDistance;
   rigging::BuiltRig built = rigging::rigFromBoneLabels(map, bones, o.rig, o.labels, &run.progress);
@@ -153,7 +154,7 @@ void addRigCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("rig", "Posing rig of a body: tet mesh, bone regions, weights, CoR centres");
   cmd->add_option("--skin", o->skin, "Closed body surface (.obj .stl .vtp .ply .vtk), with --skeleton");
   cmd->add_option("--skeleton", o->skeleton, "Skeleton: MakeHuman .mhskel or .bvh, with --skin");
-  cmd->add_option("--labels", o->labels,
+  addLabelsOption(*cmd, o->labels, o->grid,
                   "Instead of --skin/--skeleton: a label map with segmented bones (hip_left, hip_right, sacrum, "
                   "femur_left, femur_right, vertebrae_L5 upward); skeleton and bone regions from its labels");
   cmd->add_option("--label-table", o->labelTable, "Label table for --labels (default: the one beside it)");

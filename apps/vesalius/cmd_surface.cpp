@@ -1,10 +1,10 @@
 // vesalius surface: closed surfaces of labels, one mesh per label.
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/safe_file_name.h"
-#include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/shared_label_surfaces.h"
@@ -18,7 +18,7 @@ namespace vesalius::cli {
 namespace {
 
 struct SurfaceOptions {
-  std::string labels, table, out, format = ".vtp";
+  std::string labels, grid, table, out, format = ".vtp";
   std::vector<std::string> selected;
   int smoothIterations = -1;  // -1: each method's default
   int targetFaces = 0;
@@ -85,7 +85,7 @@ void runSurface(const SurfaceOptions& o, CommandRun& run) {
   if (o.shared && o.targetFaces > 0) throw UsageError("surface: --target-faces cannot keep --shared boundaries shared");
   if (!o.touching.empty() && !o.shared) throw UsageError("surface: --touching needs --shared");
   if (!o.touching.empty() && o.selected.empty()) throw UsageError("surface: --touching needs at least one --label");
-  const LabelMap map = io::readLabelMap(o.labels, o.table);
+  const LabelMap map = readLabelsOption(o.labels, o.table, o.grid, run.report);
 
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(resolveLabel(map, s, o.labels));
@@ -136,7 +136,7 @@ void runSurface(const SurfaceOptions& o, CommandRun& run) {
 void addSurfaceCommand(CLI::App& app) {
   auto o = std::make_shared<SurfaceOptions>();
   CLI::App* cmd = app.add_subcommand("surface", "Closed, smoothed surfaces of labels (one mesh per label, LPS mm)");
-  cmd->add_option("--labels", o->labels, "Label map (NIfTI, NRRD, MetaImage)")->required();
+  addLabelsOption(*cmd, o->labels, o->grid, kLabelsHelp)->required();
   slicerParameter(
       cmd->add_option("--table", o->table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map"),
       SlicerKind::File, false, ".tsv,.ctbl,.txt");

@@ -1,11 +1,11 @@
 // vesalius tetmesh: a tetrahedral mesh of closed surfaces, or of labels of a label map (one region each).
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 #include "vesalius/rigging/label_regions.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/tet_quality.h"
-#include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/tet_budget.h"
@@ -25,7 +25,7 @@ namespace {
 
 struct TetmeshOptions {
   std::vector<std::string> surfaces, selected;
-  std::string labels, table, out;
+  std::string labels, grid, table, out;
   int body = 0;  // with --labels: label of an outer region, the union of all non-zero voxels (0: none)
   bool shared = false;  // with --labels: touching labels share their boundaries
   meshing::TetrahedralizeOptions tet;
@@ -58,19 +58,19 @@ LabelMap cappedLabels(LabelMap map) {
   return segmentation::resampleLabels(map, capped);
 }
 
-std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, Progress& progress) {
-  const LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
+std::vector<meshing::RegionSurface> labelRegions(const TetmeshOptions& o, CommandRun& run) {
+  const LabelMap map = cappedLabels(readLabelsOption(o.labels, o.table, o.grid, run.report));
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   rigging::LabelRegionOptions regions;
   regions.body = o.body;
-  return rigging::labelRegionSurfaces(map, ids, regions, o.labels, &progress);
+  return rigging::labelRegionSurfaces(map, ids, regions, o.labels, &run.progress);
 }
 
 // --shared: the labels' surfaces share their boundaries where they touch; with --body the rest of the
 // body (holes filled) is one more label around them, touching them wherever they reach its surface.
-meshing::SharedLabelSurfaces sharedRegions(const TetmeshOptions& o, Progress& progress) {
-  LabelMap map = cappedLabels(io::readLabelMap(o.labels, o.table));
+meshing::SharedLabelSurfaces sharedRegions(const TetmeshOptions& o, CommandRun& run) {
+  LabelMap map = cappedLabels(readLabelsOption(o.labels, o.table, o.grid, run.report));
   std::vector<Label> ids;
   for (const std::string& s : o.selected) ids.push_back(map.table.resolve(s));
   if (o.body > 0) {
@@ -84,7 +84,7 @@ meshing::SharedLabelSurfaces sharedRegions(const TetmeshOptions& o, Progress& pr
         map.labels.values[v] = Label(o.body);
     if (!ids.empty()) ids.push_back(Label(o.body));
   }
-  return meshing::sharedLabelSurfaces(map, ids, {}, &progress);
+  return meshing::sharedLabelSurfaces(map, ids, {}, &run.progress);
 }
 
 std::string qualityText(const TetQualityReport& r, const io::TetMeshSummary& s) {
@@ -126,13 +126,13 @@ void runTetmesh(const TetmeshOptions& o, CommandRun& run) {
   TetMesh mesh;
   std::size_t regionCount = 0;
   if (o.shared) {
-    const meshing::SharedLabelSurfaces shared = sharedRegions(o, run.progress);
+    const meshing::SharedLabelSurfaces shared = sharedRegions(o, run);
     run.report.metric("repaired_voxels", shared.repairedVoxels);
     regionCount = shared.ids.size();
     auto timer = run.report.time("tetrahedralize");
     mesh = meshing::tetrahedralizeLabels(shared, o.tet, o.labels);
   } else {
-    const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, run.progress);
+    const auto regions = o.labels.empty() ? readSurfaces(o) : labelRegions(o, run);
     regionCount = regions.size();
     auto timer = run.report.time("tetrahedralize");
     if (regions.size() == 1 && o.tet.targetTets > 0 && !o.tet.keepSurface) {
@@ -167,7 +167,7 @@ void addTetmeshCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("tetmesh", "Tetrahedral mesh (TetGen) of closed surfaces or of labels");
   cmd->add_option("--surface", o->surfaces,
                   "Closed surface (.stl .obj .vtp .ply .vtk), repeatable: nested or apart, one region each");
-  cmd->add_option("--labels", o->labels, "Label map: one region per label, surfaces as `vesalius surface` makes");
+  addLabelsOption(*cmd, o->labels, o->grid, "Label map: one region per label, surfaces as `vesalius surface` makes");
   cmd->add_option("--table", o->table, "Label table for --labels (default: the one beside it)");
   cmd->add_option("--label", o->selected, "Label id or name for --labels, repeatable (default: all in the table)");
   cmd->add_option("--body", o->body,

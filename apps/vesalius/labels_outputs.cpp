@@ -27,8 +27,11 @@ std::vector<std::int64_t> voxelsPerId(const Grid<Label>& labels) {
 
 }  // namespace
 
-LabelsInput::LabelsInput(std::string labelsPath, LabelMap labelMap)
-    : path(std::move(labelsPath)), map(std::move(labelMap)), voxels(voxelsPerId(map.labels)) {}
+LabelsInput::LabelsInput(std::string labelsPath, std::string gridPath, LabelMap labelMap)
+    : path(std::move(labelsPath)),
+      grid(std::move(gridPath)),
+      map(std::move(labelMap)),
+      voxels(voxelsPerId(map.labels)) {}
 
 std::string LabelsInput::name(Label id) const {
   const LabelEntry* e = map.table.find(id);
@@ -79,11 +82,12 @@ void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const 
                         io::Report& report) {
   const bool rtStruct = io::isDicomRtStructPath(out);
   if (io::isDicomSegPath(out) || rtStruct) {
-    const std::optional<io::DicomSourceSeries> source =
-        io::readDicomSource(dicomSeries.empty() ? input.path : dicomSeries);
+    // A structure set refers to no grid: the scan it was read onto is the series it belongs to.
+    const std::string series = !dicomSeries.empty() ? dicomSeries : !input.grid.empty() ? input.grid : input.path;
+    const std::optional<io::DicomSourceSeries> source = io::readDicomSource(series);
     if (rtStruct) io::writeDicomRtStruct(out, edited, source ? &*source : nullptr, common.writeOptions());
     else io::writeDicomSeg(out, edited, source ? &*source : nullptr, common.writeOptions());
-    if (source) report.input("dicom_series", dicomSeries.empty() ? input.path : dicomSeries);
+    if (source) report.input("dicom_series", series);
   } else {
     io::writeLabelMap(out, edited, common.writeOptions());
   }

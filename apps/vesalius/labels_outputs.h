@@ -13,14 +13,15 @@
 
 namespace vesalius::cli {
 
-// The map a `labels` action edits, read from `path`, its voxels per id, and the labels the user names:
-// resolved, checked and named as the summary rows and the messages name them.
+// The map a `labels` action edits, read from `path` (onto the scan `grid` if it is an RT Structure Set),
+// its voxels per id, and the labels the user names: resolved, checked and named as the summary rows and
+// the messages name them.
 struct LabelsInput {
-  std::string path;
+  std::string path, grid;
   LabelMap map;
   std::vector<std::int64_t> voxels;  // by id: 65536 counts
 
-  LabelsInput(std::string labelsPath, LabelMap labelMap);
+  LabelsInput(std::string labelsPath, std::string gridPath, LabelMap labelMap);
   // "liver (5)", or "5" for an id without a table entry.
   std::string name(Label id) const;
   // An id or name that must have voxels (BadInput naming `path` otherwise): editing a label the map does
@@ -44,7 +45,7 @@ constexpr const char* kOutHelp =
     "(.rtstruct.dcm)";
 constexpr const char* kDicomSeriesHelp =
     "DICOM folder of the scan the labels belong to (one series), which a .dcm or .rtstruct.dcm --out refers to; by default a "
-    "DICOM segmentation given as --labels passes on the series it refers to";
+    "DICOM segmentation given as --labels passes on the series it refers to, and a DICOM --grid its own";
 
 // Refuses (UsageError) --dicom-series unless --out is a DICOM segmentation (.dcm) or RT Structure Set
 // (.rtstruct.dcm).
@@ -56,7 +57,8 @@ void refuseInputsAsOutputs(const std::string& labels, const std::string& table, 
 
 // Writes `edited` to `out` with its tables beside it (a .seg.nrrd or .dcm carries its own); a .dcm (DICOM
 // SEG, or an RT Structure Set for .rtstruct.dcm, io/dicom_rtstruct.h) refers to the DICOM series in
-// `dicomSeries`, else to the one a DICOM SEG input refers to (io/dicom_seg.h). Prints each row's voxels and mL in the input
+// `dicomSeries`, else to the one a DICOM SEG input refers to (io/dicom_seg.h), else to the --grid an RT
+// Structure Set input was read onto when that is DICOM. Prints each row's voxels and mL in the input
 // and in `edited` and puts them in the report, says when the grid changed and prints the paths written.
 void writeLabelsOutputs(const LabelsInput& input, const LabelMap& edited, const std::vector<SummaryRow>& rows,
                         const std::string& out, const std::string& dicomSeries, const CommonOptions& common,

@@ -1,6 +1,8 @@
 // Fat thickness and the fat forest from the command line (thickness_input.h).
 #include "thickness_input.h"
 
+#include "label_map_input.h"
+
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 #include "vesalius/fat/thickness_at_vertices.h"
@@ -83,8 +85,8 @@ Eigen::VectorXd readThickness(const std::string& spec, const TriMesh& skin, cons
 }
 
 void addForestSourceOptions(CLI::App& cmd, ForestSource& o, bool required) {
-  auto* labels = cmd.add_option("--labels", o.labels,
-                                "Label map with skin and fat classes (e.g. from 'vesalius segment', CT or MRI)");
+  auto* labels = addLabelsOption(cmd, o.labels, o.grid,
+                                 "Label map with skin and fat classes (e.g. from 'vesalius segment', CT or MRI)");
   if (required) labels->required();
   cmd.add_option("--table", o.table, "Label table (.tsv or Slicer .ctbl); default: the one beside the label map");
   cmd.add_option("--skin-label", o.skinLabel, "Skin label id or name")->capture_default_str();
@@ -106,7 +108,7 @@ LoadedForest loadForest(const ForestSource& o, io::Report& report, Progress& pro
   LoadedForest l;
   report.input("labels", o.labels);
   if (!o.fatMask.empty()) report.input("fat_mask", o.fatMask);
-  l.map = io::readLabelMap(o.labels, o.table);
+  l.map = readLabelsOption(o.labels, o.table, o.grid, report);
   const Label skinId = resolveLabel(l.map, o.skinLabel, o.labels);
   l.skin = maskOfLabel(l.map, skinId, "skin", o.labels);
   if (o.fatMask.empty()) {

@@ -26,12 +26,12 @@ Eigen::VectorXd readThickness(const std::string& spec, const TriMesh& skin, cons
 
 // Where the skin and fat masks come from, and the forest's options (shared by forest, erode, texture).
 struct ForestSource {
-  std::string labels, table, skinLabel = "skin", fatLabel = "subcutaneous_fat", fatMask;
+  std::string labels, grid, table, skinLabel = "skin", fatLabel = "subcutaneous_fat", fatMask;
   double maxDistance = std::numeric_limits<double>::infinity();
   double gatherRadius = -1, vertexRadius = 0;
 };
 
-// --labels (required or not) and the forest's options.
+// --labels and --grid (label_map_input.h; --labels required or not) and the forest's options.
 void addForestSourceOptions(CLI::App& cmd, ForestSource& o, bool required);
 
 // The masks and the forest of a ForestSource.

@@ -2,13 +2,17 @@
 // (dcmqi's 3-slice CT; TotalSegmentator's JPEG 2000 series, anonymised without study and series UIDs)
 // read back with DCMTK and with our reader against `segment --out X.nii.gz`; `labels` passing the
 // references on; `info` on a SEG; a cut file refused in one line; `segment` and `labels` writing RT
-// Structure Sets (.rtstruct.dcm) that refer to the series and fill back to the NIfTI's voxels.
+// Structure Sets (.rtstruct.dcm) that refer to the series and fill back to the NIfTI's voxels; `labels`
+// and `surface` reading them onto the scan --grid names, and refusing them without --grid.
 #include "run_command.h"
+#include "test_ct_3slice.h"
+#include "test_data.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
+#include "vesalius/io/mesh_io.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -18,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -235,6 +240,145 @@ TEST(CliDicomSeg, SegmentAndLabelsWriteRtStructsReferringToTheSeries) {
   const LabelMap extracted = io::readDicomRtStruct(bone, expected.labels.geometry);
   ASSERT_EQ(extracted.table.entries.size(), 1u);
   EXPECT_EQ(extracted.table.entries.front().name, "bone");
+}
+
+// Voxels that differ between two maps on one grid, and the Dice overlap of each of `ids`, printed.
+std::size_t compareLabels(const LabelMap& back, const LabelMap& expected, const std::vector<Label>& ids,
+                          const std::string& name) {
+  EXPECT_EQ(back.labels.geometry.size, expected.labels.geometry.size) << name;
+  if (back.labels.values.size() != expected.labels.values.size()) return expected.labels.values.size();
+  std::size_t differing = 0;
+  for (std::size_t n = 0; n < expected.labels.values.size(); ++n)
+    differing += back.labels.values[n] != expected.labels.values[n];
+  std::cout << name << ": " << differing << " of " << expected.labels.values.size() << " voxels differ;";
+  for (Label id : ids) {
+    std::size_t a = 0, b = 0, both = 0;
+    for (std::size_t n = 0; n < expected.labels.values.size(); ++n) {
+      a += back.labels.values[n] == id;
+      b += expected.labels.values[n] == id;
+      both += back.labels.values[n] == id && expected.labels.values[n] == id;
+    }
+    const double dice = a + b == 0 ? 0.0 : 2.0 * double(both) / double(a + b);
+    std::cout << " label " << id << ": " << b << " voxels, Dice " << dice << ";";
+    EXPECT_GT(b, 0u) << name << " label " << id;
+    EXPECT_EQ(dice, 1.0) << name << " label " << id;
+  }
+  std::cout << '\n';
+  return differing;
+}
+
+// The 3-slice series segmented by `segment` as an RT Structure Set and as NIfTI, named `name` + extension.
+struct Segmented {
+  std::string rtStruct, nifti;
+};
+
+Segmented segmentedTwice(const std::string& name) {
+  const Segmented s{fresh(name + ".rtstruct.dcm"), fresh(name + ".nii.gz")};
+  for (const std::string& out : {s.rtStruct, s.nifti}) {
+    const CommandResult r = runVesalius({"segment", "--scan", kCt3SliceFolder, "--out", out});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+  }
+  return s;
+}
+
+TEST(CliDicomSeg, LabelsAndSurfaceReadAnRtStructOntoTheGrid) {
+  // Read back onto the series' grid: the DICOM folder itself.
+  const std::string& folder = kCt3SliceFolder;
+  const auto [rt, nifti] = segmentedTwice("grid-in");
+  const std::string back = fresh("grid-back.nii.gz"), seg = fresh("grid-bone.dcm");
+  const LabelMap expected = io::readLabelMap(nifti);
+  std::vector<Label> ids;
+  for (const LabelEntry& e : expected.table.entries)
+    if (std::count(expected.labels.values.begin(), expected.labels.values.end(), e.id)) ids.push_back(e.id);
+  ASSERT_GE(ids.size(), 2u);
+  std::vector<std::string> args{"labels", "extract", "--labels", rt, "--grid", folder, "--out", back};
+  for (Label id : ids) args.insert(args.end(), {"--label", std::to_string(id)});
+  CommandResult r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const LabelMap read = io::readLabelMap(back);
+  EXPECT_EQ(compareLabels(read, expected, ids, "ct-3slice.rtstruct.dcm onto its series"), 0u);
+  for (Label id : ids) EXPECT_EQ(read.table.find(id)->name, expected.table.find(id)->name);
+
+  // Written as a SEG, it refers to the series --grid names.
+  r = runVesalius({"labels", "extract", "--labels", rt, "--grid", folder, "--label", "bone", "--out", seg});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::DicomSegmentation bone = io::readDicomSeg(seg);
+  ASSERT_TRUE(bone.source);
+  EXPECT_EQ(bone.source->seriesInstanceUid, sourceUids(folder).series);
+
+  // `surface` of the structure set read onto a NIfTI grid makes the mesh the NIfTI's labels make.
+  const std::string fromRt = fresh("grid-bone-rt.stl"), fromNifti = fresh("grid-bone-nifti.stl");
+  r = runVesalius({"surface", "--labels", rt, "--grid", nifti, "--label", "bone", "--out", fromRt});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_EQ(runVesalius({"surface", "--labels", nifti, "--label", "bone", "--out", fromNifti}).exitCode, 0);
+  const TriMesh a = io::readTriMesh(fromRt), b = io::readTriMesh(fromNifti);
+  ASSERT_EQ(a.V.rows(), b.V.rows());
+  ASSERT_EQ(a.F.rows(), b.F.rows());
+  const double apart = (a.V - b.V).cwiseAbs().maxCoeff();
+  std::cout << "bone surface: " << a.V.rows() << " vertices, " << a.F.rows()
+            << " triangles; vertices differ by at most " << apart << " mm from the NIfTI's\n";
+  EXPECT_EQ(apart, 0.0);
+  EXPECT_EQ(a.F, b.F);
+}
+
+TEST(CliDicomSeg, OrgansOfTheShippedCtRoundTripThroughAnRtStruct) {
+  // Liver, spleen and left kidney of the shipped CT's labels written by `labels extract` and read back onto
+  // the CT's grid by it.
+  const std::string rt = fresh("organs.rtstruct.dcm"), back = fresh("organs-back.nii.gz");
+  const std::vector<std::string> organs{"--label", "liver", "--label", "spleen", "--label", "kidney_left"};
+  std::vector<std::string> args{"labels", "extract", "--labels", kCtLabels, "--table", kCtLabelTable};
+  args.insert(args.end(), organs.begin(), organs.end());
+  args.insert(args.end(), {"--out", rt});
+  CommandResult r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  args = {"labels", "extract", "--labels", rt, "--grid", kCtScan};
+  args.insert(args.end(), organs.begin(), organs.end());
+  args.insert(args.end(), {"--out", back});
+  r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::cout << r.out;
+  const LabelMap all = io::readLabelMap(kCtLabels, kCtLabelTable);
+  std::vector<Label> ids;
+  for (const char* organ : {"liver", "spleen", "kidney_left"}) ids.push_back(all.table.resolve(organ));
+  LabelMap expected = all;
+  for (Label& v : expected.labels.values)
+    if (std::find(ids.begin(), ids.end(), v) == ids.end()) v = 0;
+  const LabelMap read = io::readLabelMap(back);
+  EXPECT_EQ(compareLabels(read, expected, ids, "organs.rtstruct.dcm onto example_ct.nii.gz"), 0u);
+  for (Label id : ids) EXPECT_EQ(read.table.find(id)->name, all.table.find(id)->name);
+}
+
+TEST(CliDicomSeg, AnRtStructWithoutGridIsOneLineAndGridIsOnlyForOne) {
+  const std::string& folder = kCt3SliceFolder;
+  const auto [rt, nifti] = segmentedTwice("no-grid");
+  const std::string out = fresh("no-grid-out.nii.gz"), mesh = fresh("no-grid.stl");
+  // Named for its content only: found by its SOP class.
+  const std::string renamed = fresh("no-grid-structures.dcm");
+  fs::copy_file(rt, renamed);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"labels", "extract", "--labels", rt, "--label", "bone", "--out", out},
+        std::vector<std::string>{"surface", "--labels", rt, "--label", "bone", "--out", mesh},
+        std::vector<std::string>{"labels", "extract", "--labels", renamed, "--label", "bone", "--out", out}}) {
+    const CommandResult r = runVesalius(args);
+    std::cout << r.err;
+    EXPECT_EQ(r.exitCode, 2) << args[0];
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    const std::string& labels = *(std::find(args.begin(), args.end(), "--labels") + 1);
+    expectContains(r.err, labels + ": an RT Structure Set");
+    expectContains(r.err, "pass --grid");
+  }
+  // --grid with a map on a grid of its own is a usage error, as is --grid without --labels.
+  CommandResult r =
+      runVesalius({"labels", "extract", "--labels", nifti, "--grid", folder, "--label", "bone", "--out", out});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  expectContains(r.err, nifti);
+  r = runVesalius({"tetmesh", "--surface", mesh, "--grid", folder, "--out", fresh("no-grid.vtu")});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  expectContains(r.err, "--labels");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(mesh));
 }
 
 }  // namespace

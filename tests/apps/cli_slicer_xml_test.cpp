@@ -225,6 +225,11 @@ TEST(CliSlicerXml, ImagesAndModelsHaveTheirChannels) {
   EXPECT_EQ(labels->channel, "input");
   EXPECT_EQ(mesh->tag, "geometry");
   EXPECT_EQ(mesh->channel, "output");
+  // The scan an RT Structure Set given as --labels is read onto.
+  const Parameter* grid = find(surface, "grid");
+  ASSERT_TRUE(grid);
+  EXPECT_EQ(grid->tag, "image");
+  EXPECT_EQ(grid->channel, "input");
 
   // The patient's output is a folder; its scan and organ labels are volumes.
   const std::vector<Parameter> patient = slicerParameters({"patient"}, title);
