@@ -1,9 +1,10 @@
-// vesalius patient: one patient's CT (and its organ/bone segmentation) in, that patient's anatomy out
+// vesalius patient: one patient's CT or MRI (and its organ/bone segmentation) in, that patient's anatomy out
 // (patient/virtual_patient.h). Reads the inputs and the organ template library, runs the pipeline, writes
 // the output folder whole or not at all. vesalius demo is the same command on the shipped CT and labels.
 #include "command_runner.h"
 #include "common.h"
 #include "full_body_sources.h"
+#include "modality_option.h"
 #include "patient_outputs.h"
 #include "posing_session.h"
 #include "shipped_data.h"
@@ -32,6 +33,7 @@ namespace {
 
 struct PatientOptions {
   std::string scan, organs, organTable, out, templates = shippedTemplates("organs");
+  std::string modality = "auto";
   std::string pose, motion;  // joint angles, or a BVH motion and its frame
   int frame = 0;
   std::string reference;     // a full-body reference folder; empty: built from the shipped sources
@@ -88,6 +90,9 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
   run.report.parameter("refits", o.pipeline.organFit.refits);
 
   const Image scan = io::readScan(o.scan);
+  patient::VirtualPatientOptions pipeline = o.pipeline;
+  pipeline.surfaces.modality = resolveModality(o.modality, scan);
+  run.report.parameter("modality", segmentation::modalityName(pipeline.surfaces.modality));
   std::optional<LabelMap> organs;
   if (!o.organs.empty()) organs = io::readLabelMap(o.organs, o.organTable);
   const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
@@ -99,10 +104,9 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
                        std::to_string(motion->frameCount() - 1) + " of " + o.motion);
   }
   // Bad inputs refused at once, before the reference and the pipeline take their minutes.
-  patient::checkVirtualPatientInputs(scan, organs ? &*organs : nullptr, templates, o.pipeline, o.complete,
+  patient::checkVirtualPatientInputs(scan, organs ? &*organs : nullptr, templates, pipeline, o.complete,
                                      !o.pose.empty() || motion.has_value(), o.scan, o.organs);
   std::optional<ReferenceAnatomy> reference;
-  patient::VirtualPatientOptions pipeline = o.pipeline;
   for (rigging::RigOptions* rig : {&pipeline.rigging.modelRig, &pipeline.rigging.rig}) {
     if (o.rigTets > 0) rig->targetTets = o.rigTets;
     if (o.rigVoxelSize > 0) rig->voxelSize = o.rigVoxelSize;
@@ -179,6 +183,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
 }
 
 void addPatientOptions(CLI::App& cmd, PatientOptions& o) {
+  addModalityOption(cmd, o.modality);
   cmd.add_option("--templates", o.templates,
                  "Organ template library: a folder of closed surfaces named after their organ's label (liver.obj)")
       ->capture_default_str();
@@ -235,8 +240,9 @@ const char* kOutputs =
 
 void addPatientCommand(CLI::App& app) {
   auto o = std::make_shared<PatientOptions>();
-  CLI::App* cmd = app.add_subcommand("patient", "One patient's CT in, that patient's anatomy out (the virtual patient)");
-  cmd->add_option("--scan", o->scan, "The patient's CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
+  CLI::App* cmd =
+      app.add_subcommand("patient", "One patient's CT or MRI in, that patient's anatomy out (the virtual patient)");
+  cmd->add_option("--scan", o->scan, "The patient's CT or MRI (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
   cmd->add_option("--organs", o->organs,
                   "Organ and bone label map of the same scan, as TotalSegmentator writes it (v1 or v2 names)");
   cmd->add_option("--organ-table", o->organTable, "Its label table (default: the one beside it)");
@@ -244,7 +250,9 @@ void addPatientCommand(CLI::App& app) {
   addPatientOptions(*cmd, *o);
   cmd->footer(std::string("Example:\n"
                           "  vesalius patient --scan ct.nii.gz --organs seg.nii.gz --organ-table labels_total_v1.tsv "
-                          "--out patient --pose 'femur_l=-30,0,0; femur_r=-30,0,0'\n") +
+                          "--out patient --pose 'femur_l=-30,0,0; femur_r=-30,0,0'\n"
+                          "  vesalius patient --scan mr.nii.gz --organs mr_seg.nii.gz --organ-table labels_total_mr.tsv "
+                          "--out mr-patient\n") +
               kOutputs);
   cmd->callback([o] { runCommand("patient", o->common, [&](CommandRun& run) { runPatient(*o, run); }); });
 }

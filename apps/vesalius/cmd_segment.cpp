@@ -1,13 +1,12 @@
 // vesalius segment: tissue classes of a scan as a label map with its label table and a slice picture.
 #include "command_runner.h"
 #include "common.h"
+#include "modality_option.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
-#include "vesalius/segmentation/ct_tissues.h"
-#include "vesalius/segmentation/mri_tissues.h"
 #include "vesalius/viz/slice_overlay.h"
 
 #include <filesystem>
@@ -19,7 +18,7 @@ namespace vesalius::cli {
 namespace {
 
 struct SegmentOptions {
-  std::string scan, modality = "ct", out, png, series;
+  std::string scan, modality = "auto", out, png, series;
   double skinThickness = 2.0;
   CommonOptions common;
 };
@@ -30,18 +29,6 @@ std::string defaultPngPath(const std::string& labels) {
   return labels.substr(0, labels.size() - ext.size()) + ".png";
 }
 
-// CT classes come from Hounsfield units; MRI (T1) classes from the scan's own histogram.
-LabelMap classify(const Image& scan, const SegmentOptions& o, Progress& progress) {
-  if (o.modality == "mri") {
-    segmentation::MriTissueOptions options;
-    options.skinThicknessMm = o.skinThickness;
-    return segmentation::segmentMriTissues(scan, options, &progress);
-  }
-  segmentation::CtTissueOptions options;
-  options.skinThicknessMm = o.skinThickness;
-  return segmentation::segmentCtTissues(scan, options, &progress);
-}
-
 void runSegment(const SegmentOptions& o, CommandRun& run) {
   // The picture's default name comes from --out, so no option check has seen it: checked before the work,
   // not after the label map is written.
@@ -49,7 +36,6 @@ void runSegment(const SegmentOptions& o, CommandRun& run) {
   checkNotAnInput(png);
   if (!o.common.force && std::filesystem::exists(png)) throw UsageError(png + ": exists; pass --force to replace it");
   run.report.input("scan", o.scan);
-  run.report.parameter("modality", o.modality);
   run.report.parameter("skin_thickness_mm", o.skinThickness);
 
   Image scan;
@@ -57,6 +43,8 @@ void runSegment(const SegmentOptions& o, CommandRun& run) {
     auto timer = run.report.time("read scan");
     scan = io::readScan(o.scan, io::ScanReadOptions{o.series});
   }
+  const segmentation::Modality modality = resolveModality(o.modality, scan);
+  run.report.parameter("modality", segmentation::modalityName(modality));
   // A DICOM SEG or RT Structure Set refers to the series it was made from, when the scan is one.
   const bool rtStruct = io::isDicomRtStructPath(o.out);
   const std::optional<io::DicomSourceSeries> source =
@@ -64,7 +52,7 @@ void runSegment(const SegmentOptions& o, CommandRun& run) {
   LabelMap labels;
   {
     auto timer = run.report.time("segment");
-    labels = classify(scan, o, run.progress);
+    labels = segmentation::segmentTissues(scan, modality, o.skinThickness, &run.progress);
   }
   // The labels, their tables and their picture all or none: a picture that fails leaves no labels.
   std::vector<std::string> outputs = io::labelMapFiles(o.out);
@@ -87,12 +75,7 @@ void addSegmentCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("segment", "Segment a scan into tissue classes (skin, fat, soft tissue, bone)");
   cmd->add_option("--scan", o->scan, "Scan: NIfTI, NRRD, MetaImage, or a DICOM folder")->required();
   cmd->add_option("--series", o->series, "DICOM series UID when the folder holds several");
-  cmd->add_option("--modality", o->modality,
-                  "Scan modality: ct (classes from Hounsfield units: skin, subcutaneous_fat, fat, soft_tissue, "
-                  "bone) or mri (T1-weighted, classes from the scan's histogram: skin, subcutaneous_fat, "
-                  "dark bone such as the skull, soft_tissue)")
-      ->check(CLI::IsMember({"ct", "mri"}))
-      ->capture_default_str();
+  addModalityOption(*cmd, o->modality);
   slicerParameter(cmd->add_option("--out", o->out,
                                   "Label map to write (.nii.gz, .nrrd, .mha), with label tables beside it for "
                                   "Vesalius (.tsv), 3D Slicer (.ctbl) and ITK-SNAP (.label.txt); or a 3D Slicer "

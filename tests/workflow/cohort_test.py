@@ -2,8 +2,8 @@
 """The cohort workflow run for real on a cohort made from the shipped data (make_cohort.py).
 
     cohort_test.py local --vesalius BIN --source REPO --work DIR
-        scripts/cohort.sh on the folder of scans, on this machine: the broken scan and the MRI (not a
-        CT) listed with their errors, the others complete; the summary, its plot and `snakemake --report`; one patient folder
+        scripts/cohort.sh on the folder of scans, on this machine: the broken scan listed with its error,
+        the others (the CTs and the MRI) complete; the summary, its plot and `snakemake --report`; one patient folder
         deleted, and the rerun makes that scan alone (dry run, --summary, then the run itself); a
         usage error in the options, every job failed, the table still written by the onerror handler.
     cohort_test.py slurm --vesalius BIN --source REPO --work DIR
@@ -31,9 +31,8 @@ PATIENT_OPTIONS = "patient_options=[--no-reference, --markers, 60, --organ-tets,
 # One core per scan: two scans at a time on two cores (the pipeline is partly serial).
 CONFIG = ["--config", PATIENT_OPTIONS, "patient_mem_mb=3000", "patient_threads=1", "patient_runtime_min=20"]
 SCANS = {"ct", "ct-cropflip", "dicom-ct", "mr-abdomen", "broken"}
-# vesalius patient reads a CT by its Hounsfield units: the MRI has no body in those units and is refused as
-# bad input, like the truncated file. Both are results the table must carry.
-REFUSED = {"broken", "mr-abdomen"}
+# The truncated file is refused as bad input: a result the table must carry.
+REFUSED = {"broken"}
 VOLATILE = {"wall_s", "cpu_s", "peak_rss_mb", "host", "slurm_job"}
 
 failures = []

@@ -8,7 +8,7 @@
                 field of view of the same body (the affine says where each voxel is, so the body is not
                 mirrored)
   dicom-ct      the 20-file JPEG 2000 DICOM series (a folder)
-  mr-abdomen    the abdominal MRI of another subject
+  mr-abdomen    the abdominal MRI of another subject with its TotalSegmentator MR labels
   broken        a NIfTI file cut short (testdata/bad/scan_truncated.nii.gz)
 
 The crop and flip are done here on the NIfTI-1 file itself (header fields, voxel bytes), stdlib only.
@@ -79,6 +79,8 @@ def main(argv) -> int:
         "ct.organs.tsv": os.path.join(ct, "labels_total_v1.tsv"),
         "dicom-ct": os.path.join(testdata, "dicom", "ct-series-jpeg2000"),
         "mr-abdomen.nii.gz": os.path.join(testdata, "mr-abdomen", "example_mr_sm.nii.gz"),
+        "mr-abdomen.organs.nii.gz": os.path.join(testdata, "mr-abdomen", "example_seg_mr.nii.gz"),
+        "mr-abdomen.organs.tsv": os.path.join(testdata, "mr-abdomen", "labels_total_mr.tsv"),
     }
     for name, target in links.items():
         if not os.path.exists(target):
@@ -89,8 +91,8 @@ def main(argv) -> int:
     with open(os.path.join(out, "cohort.csv"), "w") as f:
         f.write("# the same scans as scans/, as a sheet\nscan,path,organs,organ_table\n")
         f.write("ct,scans/ct.nii.gz,scans/ct.organs.nii.gz,scans/ct.organs.tsv\n")
-        for name in ("ct-cropflip,scans/ct-cropflip.nii.gz", "dicom-ct,scans/dicom-ct",
-                     "mr-abdomen,scans/mr-abdomen.nii.gz", "broken,scans/broken.nii.gz"):
+        f.write("mr-abdomen,scans/mr-abdomen.nii.gz,scans/mr-abdomen.organs.nii.gz,scans/mr-abdomen.organs.tsv\n")
+        for name in ("ct-cropflip,scans/ct-cropflip.nii.gz", "dicom-ct,scans/dicom-ct", "broken,scans/broken.nii.gz"):
             f.write(name + ",,\n")
     return 0
 

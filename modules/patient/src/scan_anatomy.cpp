@@ -2,7 +2,6 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/meshing/label_surface.h"
-#include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <map>
@@ -70,10 +69,16 @@ std::vector<int> scanCutVertices(const TriMesh& skin, const Grid<std::uint8_t>& 
   return cut;
 }
 
-TriMesh scanSkin(const Image& ct, const ScanAnatomyOptions& options, const std::string& source,
+TriMesh scanSkin(const Image& scan, const ScanAnatomyOptions& options, const std::string& source,
                  std::vector<int>& cutVertices) {
-  const segmentation::Mask body = segmentation::segmentCtBody(ct, {});
-  if (segmentation::countVoxels(body) == 0) throw BadInput(source, "the CT holds no body (no voxel above air)");
+  segmentation::Mask body;
+  try {
+    body = segmentation::segmentBody(scan, options.modality);
+  } catch (const BadInput& e) {
+    if (!e.file().empty()) throw;
+    throw BadInput(source, e.problem());
+  }
+  if (segmentation::countVoxels(body) == 0) throw BadInput(source, "the scan holds no body (no voxel above air)");
   meshing::SurfaceOptions surface;
   surface.targetFaces = options.skinFaces;
   TriMesh skin = meshing::labelSurface(segmentation::labelMapOf(body, {1, "body"}), 1, surface);
@@ -82,13 +87,13 @@ TriMesh scanSkin(const Image& ct, const ScanAnatomyOptions& options, const std::
   return skin;
 }
 
-ReferenceAnatomy scanAnatomy(const Image& ct, const LabelMap& labels, const ScanAnatomyOptions& options,
+ReferenceAnatomy scanAnatomy(const Image& scan, const LabelMap& labels, const ScanAnatomyOptions& options,
                              const std::string& scanSource, const std::string& labelsSource, Progress* progress) {
-  if (labels.labels.geometry.size != ct.geometry.size)
+  if (labels.labels.geometry.size != scan.geometry.size)
     throw BadInput(labelsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
   ReferenceAnatomy anatomy;
   if (progress) progress->begin("skin", "body mask and its surface");
-  anatomy.skin = scanSkin(ct, options, scanSource, anatomy.skinCutVertices);
+  anatomy.skin = scanSkin(scan, options, scanSource, anatomy.skinCutVertices);
   if (progress) progress->end();
   meshing::SurfaceOptions tissueSurface;
   tissueSurface.targetFaces = options.tissueFaces;

@@ -9,36 +9,42 @@
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/segmentation/scan_modality.h"
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 
 namespace vesalius::patient {
 
 namespace {
 
-// Without an organ map: the skin and the scan's bone class as one bone, the sagittal plane through the
-// skin's centroid across the scan's left-right axis.
-ReferenceAnatomy classAnatomy(const Image& ct, const LabelMap& classes, const ScanAnatomyOptions& options,
+// Without an organ map: the skin and, on a CT, the scan's bone class as one bone; the sagittal plane
+// through the skin's centroid across the scan's left-right axis. An MRI's dark class is no bone tissue to
+// carry: T1 gives cortical bone, CSF and gas the same dark values (segmentation/mri_tissues.h), so an MRI
+// without labels has the skin alone, which then aligns the reference by itself.
+ReferenceAnatomy classAnatomy(const Image& scan, const LabelMap& classes, const ScanAnatomyOptions& options,
                               const std::string& scanSource) {
   ReferenceAnatomy anatomy;
-  anatomy.skin = scanSkin(ct, options, scanSource, anatomy.skinCutVertices);
+  anatomy.skin = scanSkin(scan, options, scanSource, anatomy.skinCutVertices);
   // The bone class is many thin pieces, which decimation tears and then takes long over (tens of seconds
   // for the shipped CT at 3,000 triangles); its surface is kept as flying edges and smoothing make it.
   const segmentation::Mask bone = segmentation::maskOf(classes.labels, segmentation::kCtBone);
-  if (segmentation::countVoxels(bone) > 0) {
+  if (options.modality == segmentation::Modality::Ct && segmentation::countVoxels(bone) > 0) {
     TriMesh mesh = meshing::labelSurface(classes, segmentation::kCtBone);
     mesh.faceAttributes = {};
     anatomy.tissues.push_back({"bone", TissueKind::Bone, "", false, std::move(mesh)});
   }
   anatomy.sagittal.point = anatomy.skin.V.colwise().mean().transpose();
-  anatomy.sagittal.normal = (ct.geometry.direction * Eigen::Vector3d::UnitX()).normalized();
+  anatomy.sagittal.normal = (scan.geometry.direction * Eigen::Vector3d::UnitX()).normalized();
   return anatomy;
 }
 
-Eigen::VectorXd fatAtSkin(const LabelMap& classes, const ReferenceAnatomy& anatomy, const std::string& scanSource) {
-  const fat::FatForest forest(segmentation::maskOf(classes.labels, segmentation::kCtSkin),
-                              segmentation::maskOf(classes.labels, segmentation::kCtSubcutaneousFat), {}, scanSource);
+Eigen::VectorXd fatAtSkin(const LabelMap& classes, segmentation::Modality modality, const ReferenceAnatomy& anatomy,
+                          const std::string& scanSource) {
+  const segmentation::SkinAndFatLabels labels = segmentation::skinAndFatLabels(modality);
+  const fat::FatForest forest(segmentation::maskOf(classes.labels, labels.skin),
+                              segmentation::maskOf(classes.labels, labels.subcutaneousFat), {}, scanSource);
   Eigen::VectorXd thickness = fat::thicknessAtVertices(forest, anatomy.skin.V, anatomy.skin.F).thickness;
   for (const int v : anatomy.skinCutVertices) thickness[v] = 0;
   return thickness;
@@ -46,9 +52,9 @@ Eigen::VectorXd fatAtSkin(const LabelMap& classes, const ReferenceAnatomy& anato
 
 // Before any work: the organ map on the scan's grid, and at least one of its labels with voxels named as
 // the model knows organs and bones (a template's organ, or a bone or muscle name of classifyTissue).
-void checkOrganMap(const Image& ct, const LabelMap& organs, const std::vector<OrganTemplate>& templates,
+void checkOrganMap(const Image& scan, const LabelMap& organs, const std::vector<OrganTemplate>& templates,
                    const std::string& scanSource, const std::string& organsSource) {
-  const GridGeometry &a = organs.labels.geometry, &b = ct.geometry;
+  const GridGeometry &a = organs.labels.geometry, &b = scan.geometry;
   if (a.size != b.size || (a.origin - b.origin).norm() > 1e-3 || (a.spacing - b.spacing).norm() > 1e-6 ||
       (a.direction - b.direction).norm() > 1e-6)
     throw BadInput(organsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
@@ -124,50 +130,57 @@ std::vector<std::pair<std::string, double>> virtualPatientStages(const LabelMap*
   return stages;
 }
 
-void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+void checkVirtualPatientInputs(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                const VirtualPatientOptions& options, bool withReference, bool posed,
                                const std::string& scanSource, const std::string& organsSource) {
-  // Segmentation's first test, without its work (segmentation/ct_tissues.h).
-  const float bodyMinHu = segmentation::CtTissueOptions{}.bodyMinHu;
-  if (std::none_of(ct.values.begin(), ct.values.end(), [&](float v) { return v >= bodyMinHu; })) {
-    std::ostringstream problem;
-    problem << "CT has no body: no voxel at or above " << bodyMinHu << " HU";
-    throw BadInput(scanSource, problem.str());
+  // Segmentation's first test, without its work (segmentation/ct_tissues.h, mri_tissues.h).
+  if (options.surfaces.modality == segmentation::Modality::Ct) {
+    const float bodyMinHu = segmentation::CtTissueOptions{}.bodyMinHu;
+    if (std::none_of(scan.values.begin(), scan.values.end(), [&](float v) { return v >= bodyMinHu; })) {
+      std::ostringstream problem;
+      problem << "CT has no body: no voxel at or above " << bodyMinHu << " HU";
+      throw BadInput(scanSource, problem.str());
+    }
+  } else if (std::adjacent_find(scan.values.begin(), scan.values.end(), std::not_equal_to<float>()) ==
+             scan.values.end()) {
+    throw BadInput(scanSource, "MRI has no body: every voxel has the same value");
   }
-  if (organs) checkOrganMap(ct, *organs, templates, scanSource, organsSource);
+  if (organs) checkOrganMap(scan, *organs, templates, scanSource, organsSource);
   if (!posed) return;
   if (const std::string why = noRigBecause(organs, options, withReference); !why.empty())
     throw BadInput(organs ? organsSource : scanSource, "cannot pose the patient: " + why);
 }
 
-VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+VirtualPatient buildVirtualPatient(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                    const VirtualPatientOptions& options, const std::string& scanSource,
                                    const std::string& organsSource, Progress* progress) {
-  checkVirtualPatientInputs(ct, organs, templates, options, options.fullBodyReference != nullptr, false, scanSource,
+  checkVirtualPatientInputs(scan, organs, templates, options, options.fullBodyReference != nullptr, false, scanSource,
                             organsSource);
   VirtualPatient patient;
   Stages stages(patient.stageSeconds, progress);
   stages.begin("segmentation", "skin, fat, bone and soft tissue classes");
   try {
-    patient.tissueClasses = segmentation::segmentCtTissues(ct, {}, progress);
+    patient.tissueClasses = segmentation::segmentTissues(scan, options.surfaces.modality, 2.0, progress);
   } catch (const BadInput& e) {
     if (!e.file().empty()) throw;
     throw BadInput(scanSource, e.problem());
   }
   stages.end("segmentation");
 
-  stages.begin("anatomy from labels", organs ? "the skin and a surface per label" : "the skin and the bone class");
+  stages.begin("anatomy from labels", organs ? "the skin and a surface per label"
+                                      : options.surfaces.modality == segmentation::Modality::Ct ? "the skin and the bone class"
+                                                                                                : "the skin");
   if (organs) {
-    patient.anatomy = scanAnatomy(ct, *organs, options.surfaces, scanSource, organsSource, progress);
+    patient.anatomy = scanAnatomy(scan, *organs, options.surfaces, scanSource, organsSource, progress);
     if (patient.anatomy.tissues.empty()) throw BadInput(organsSource, "no label of its table has voxels");
   } else {
-    patient.anatomy = classAnatomy(ct, patient.tissueClasses, options.surfaces, scanSource);
+    patient.anatomy = classAnatomy(scan, patient.tissueClasses, options.surfaces, scanSource);
   }
   patient.anatomy.name = "patient (" + scanSource + ")";
   stages.end("anatomy from labels");
 
   stages.begin("fat forests", "subcutaneous fat thickness at the skin");
-  patient.fatThickness = fatAtSkin(patient.tissueClasses, patient.anatomy, scanSource);
+  patient.fatThickness = fatAtSkin(patient.tissueClasses, options.surfaces.modality, patient.anatomy, scanSource);
   stages.end("fat forests");
 
   // Each tissue represents its own label; the fits below replace a label's surface by a fitted template.

@@ -1,4 +1,4 @@
-// The anatomy a labelled CT shows by itself (Dicko et al. 2013, §3, Fig. 2.c): the body's outer surface as the skin,
+// The anatomy a labelled scan (CT or MRI) shows by itself (Dicko et al. 2013, §3, Fig. 2.c): the body's outer surface as the skin,
 // and every label of an organ/bone segmentation (TotalSegmentator's names, v1 or v2) as a closed tissue
 // surface of its kind. The torso reference of anatomy transfer (`vesalius reference torso`) and the
 // virtual patient's own anatomy inside the field of view (virtual_patient.h) are both this.
@@ -8,6 +8,7 @@
 #include "vesalius/core/grid.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
+#include "vesalius/segmentation/scan_modality.h"
 
 #include <string>
 #include <vector>
@@ -32,19 +33,22 @@ Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const st
 std::vector<int> scanCutVertices(const TriMesh& skin, const Grid<std::uint8_t>& body);
 
 struct ScanAnatomyOptions {
+  // How the body is told from the air around it: by Hounsfield units (a CT) or by the scan's histogram (an
+  // MRI; segmentation/scan_modality.h).
+  segmentation::Modality modality = segmentation::Modality::Ct;
   int skinFaces = 20000;   // triangles of the skin surface
   int tissueFaces = 3000;  // triangles of each tissue surface
 };
 
-// The skin (the CT body mask's surface, mm LPS, with its cut vertices) of `ct`; throws BadInput naming
+// The skin (the body mask's surface, mm LPS, with its cut vertices) of `scan`; throws BadInput naming
 // `source` if the scan holds no body.
-TriMesh scanSkin(const Image& ct, const ScanAnatomyOptions& options, const std::string& source,
+TriMesh scanSkin(const Image& scan, const ScanAnatomyOptions& options, const std::string& source,
                  std::vector<int>& cutVertices);
 
-// ct: a CT in HU; labels: its organ/bone segmentation on the same grid (BadInput naming labelsSource
-// otherwise). The skin as scanSkin, every label in the table with voxels as a tissue (classifyTissue), the
-// sagittal plane from the left/right pairs.
-ReferenceAnatomy scanAnatomy(const Image& ct, const LabelMap& labels, const ScanAnatomyOptions& options,
+// scan: a CT in HU or an MRI (options.modality); labels: its organ/bone segmentation on the same grid
+// (BadInput naming labelsSource otherwise). The skin as scanSkin, every label in the table with voxels as a
+// tissue (classifyTissue), the sagittal plane from the left/right pairs.
+ReferenceAnatomy scanAnatomy(const Image& scan, const LabelMap& labels, const ScanAnatomyOptions& options,
                              const std::string& scanSource, const std::string& labelsSource,
                              Progress* progress = nullptr);
 

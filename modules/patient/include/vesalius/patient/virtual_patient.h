@@ -1,15 +1,16 @@
-// The virtual patient: one patient's CT in, that patient's anatomy out, by the papers' methods in their
-// order (docs/virtual-patient.md). buildVirtualPatient runs, on core types:
-//  1. segmentation: the CT's tissue classes (segmentation/ct_tissues.h); the skin is the body's outer
-//     surface, its vertices where the field of view cut the body marked as cut (scan_anatomy.h).
+// The virtual patient: one patient's CT or MRI in, that patient's anatomy out, by the papers' methods in
+// their order (docs/virtual-patient.md). buildVirtualPatient runs, on core types:
+//  1. segmentation: the scan's tissue classes (segmentation/ct_tissues.h, or mri_tissues.h for an MRI); the
+//     skin is the body's outer surface, its vertices where the field of view cut the body marked as cut
+//     (scan_anatomy.h).
 //  2. fat: the subcutaneous fat thickness at every skin vertex from the shortest-path fat forests of the
 //     scan's skin and subcutaneous fat classes (Dicko et al. 2013, §5; fat/fat_forest.h, fat/thickness_at_vertices.h);
 //     0 on the cut, which is not skin.
 //  3. the anatomy inside the field of view: with an organ/bone label map, each label as a closed tissue
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
 //     template fitted by plastic strains to markers on its label (Wang et al. 2021; organ_fit.h), the fitted
-//     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h). Without one, the scan's
-//     own bone class as one bone tissue.
+//     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h). Without one, a
+//     CT's own bone class as one bone tissue (an MRI's dark class is not bone alone: the skin only).
 //  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
 //     partial skin and transferred into it (reference_completion.h; Dicko et al. 2013): a whole body around the scan.
 //  5. the whole model (whole_model.h): the completed reference with, inside the field of view, the
@@ -51,7 +52,7 @@ struct OrganTemplate {
 };
 
 struct VirtualPatientOptions {
-  ScanAnatomyOptions surfaces;
+  ScanAnatomyOptions surfaces;  // its modality also picks the tissue classification (CT or MRI)
   OrganFitOptions organFit;
   OrganSeparationOptions organSeparation;
   bool rig = true;  // rig the whole model, or without the reference the scan when the organ map has its bones
@@ -93,11 +94,12 @@ struct VirtualPatient {
 };
 
 // What buildVirtualPatient refuses, without its work, for a caller with long work of its own before it (the
-// full-body reference): a CT without a voxel of the body's density (naming `scanSource`), an organ map on
+// full-body reference): a CT without a voxel of the body's density or a constant MRI (naming `scanSource`;
+// options.surfaces.modality says which the scan is), an organ map on
 // another grid or with no label the model knows (naming `organsSource`), and when the patient is to be posed
 // (`posed`), a patient without a rig: without the reference (`withReference` false), one without an organ map
 // holding the pelvis and femurs (naming the organ map, or the scan without one). Throws BadInput.
-void checkVirtualPatientInputs(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+void checkVirtualPatientInputs(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                const VirtualPatientOptions& options, bool withReference, bool posed,
                                const std::string& scanSource, const std::string& organsSource);
 
@@ -109,10 +111,11 @@ std::vector<std::pair<std::string, double>> virtualPatientStages(const LabelMap*
                                                                  const std::vector<OrganTemplate>& templates,
                                                                  const VirtualPatientOptions& options, bool withReference);
 
-// ct: a CT in HU. organs: its organ/bone segmentation on the same grid, or null. Throws BadInput naming
+// scan: a CT in HU or an MRI, as options.surfaces.modality says. organs: its organ/bone segmentation on the
+// same grid, or null. Throws BadInput naming
 // `scanSource` for a scan with no body, naming `organsSource` for a label map on another grid or one in
 // which neither a template's organ nor any other label has voxels.
-VirtualPatient buildVirtualPatient(const Image& ct, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
+VirtualPatient buildVirtualPatient(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                    const VirtualPatientOptions& options, const std::string& scanSource,
                                    const std::string& organsSource, Progress* progress = nullptr);
 
