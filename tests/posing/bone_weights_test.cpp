@@ -44,7 +44,7 @@ BodyWithBones bodyWithBones() {
 
 }  // namespace
 
-TEST(BoneWeights, MeetTheSeedsConstraintsOnATetgenBody) {
+TEST(BoneWeights, MeetSujarEtAlsConstraintsOnATetgenBody) {
   const BodyWithBones b = bodyWithBones();
   const Eigen::MatrixXd raw = posing::computeBoneWeights(b.mesh.V, b.mesh.T, b.boneOfVertex, {false});
   const Eigen::MatrixXd W = posing::computeBoneWeights(b.mesh.V, b.mesh.T, b.boneOfVertex);
