@@ -4,6 +4,7 @@
 #include "command_runner.h"
 #include "common.h"
 #include "full_body_sources.h"
+#include "label_map_input.h"
 #include "modality_option.h"
 #include "patient_outputs.h"
 #include "posing_session.h"
@@ -32,7 +33,7 @@ namespace vesalius::cli {
 namespace {
 
 struct PatientOptions {
-  std::string scan, organs, organTable, out, templates = shippedTemplates("organs");
+  std::string scan, organs, organTable, grid, out, templates = shippedTemplates("organs");
   std::string modality = "auto";
   std::string pose, motion;  // joint angles, or a BVH motion and its frame
   int frame = 0;
@@ -94,7 +95,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
   pipeline.surfaces.modality = resolveModality(o.modality, scan);
   run.report.parameter("modality", segmentation::modalityName(pipeline.surfaces.modality));
   std::optional<LabelMap> organs;
-  if (!o.organs.empty()) organs = io::readLabelMap(o.organs, o.organTable);
+  if (!o.organs.empty()) organs = readLabelsOption(o.organs, o.organTable, o.grid, run.report);
   const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
   std::optional<Motion> motion;
   if (!o.motion.empty()) {
@@ -243,8 +244,10 @@ void addPatientCommand(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("patient", "One patient's CT or MRI in, that patient's anatomy out (the virtual patient)");
   cmd->add_option("--scan", o->scan, "The patient's CT or MRI (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
-  cmd->add_option("--organs", o->organs,
-                  "Organ and bone label map of the same scan, as TotalSegmentator writes it (v1 or v2 names)");
+  addLabelsOption(*cmd, o->organs, o->grid,
+                  "Organ and bone label map of the same scan, as TotalSegmentator writes it (v1 or v2 names); an RT "
+                  "Structure Set with --grid",
+                  "--organs");
   cmd->add_option("--organ-table", o->organTable, "Its label table (default: the one beside it)");
   cmd->add_option("--out", o->out, "Output folder DIR (written whole at the end, or not at all)")->required();
   addPatientOptions(*cmd, *o);

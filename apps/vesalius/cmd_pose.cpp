@@ -6,6 +6,7 @@
 // repaired (posing/untangle_tets.h) unless --no-untangle.
 #include "command_runner.h"
 #include "common.h"
+#include "label_map_input.h"
 #include "pose_outputs.h"
 #include "posing_session.h"
 
@@ -29,7 +30,7 @@ namespace vesalius::cli {
 namespace {
 
 struct PoseOptions {
-  std::string anatomy, motion, map, frames, angles, method = "lbs", out, volume, labels, pngDir;
+  std::string anatomy, motion, map, frames, angles, method = "lbs", out, volume, labels, grid, pngDir;
   int frame = 0, every = 1;
   bool everyGiven = false, qualityOnly = false, motionLps = false, noUntangle = false, noRestore = false;
   CommonOptions common;
@@ -82,6 +83,12 @@ void runPose(const PoseOptions& o, CommandRun& run) {
   checkOptions(o);
   run.report.input("anatomy", o.anatomy);
   run.report.parameter("method", o.method);
+  // The volumes before the rig's embedding, so that a bad one is refused before the work.
+  Volumes volumes;
+  if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
+  if (!o.labels.empty()) volumes.labels = readLabelsOption(o.labels, "", o.grid, run.report);
+  volumes.scanName = fs::path(o.volume).filename().string();
+  volumes.labelsName = fs::path(o.labels).filename().string();
   const posing::RigPoser session = [&] {
     auto timer = run.report.time("embed");
     return readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);
@@ -89,11 +96,6 @@ void runPose(const PoseOptions& o, CommandRun& run) {
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();
   const std::vector<PoseSpec> poses = readPoses(o, rig, run.report);
-  Volumes volumes;
-  if (!o.volume.empty()) volumes.scan = io::readScan(o.volume);
-  if (!o.labels.empty()) volumes.labels = io::readLabelMap(o.labels);
-  volumes.scanName = fs::path(o.volume).filename().string();
-  volumes.labelsName = fs::path(o.labels).filename().string();
   const posing::QualityMeter meter(rig, meshes, session.embeddings());
   std::vector<posing::PoseQuality> quality;
   double skinningSeconds = 0, restoreSeconds = 0, untangleSeconds = 0;  // skinning includes both
@@ -161,7 +163,8 @@ void addPoseCommand(CLI::App& app) {
   cmd->add_option("--method", o->method, "Skinning: lbs, dqs, cor or fem (co-rotational FEM reference)")
       ->capture_default_str();
   cmd->add_option("--volume", o->volume, "A scan in the rig's space to re-pose (trilinear)");
-  cmd->add_option("--labels", o->labels, "A label map in the rig's space to re-pose (nearest neighbour)");
+  addLabelsOption(*cmd, o->labels, o->grid,
+                  "A label map in the rig's space to re-pose (nearest neighbour); an RT Structure Set with --grid");
   cmd->add_option("--png-dir", o->pngDir, "Write a render of each pose here (needs a display)");
   cmd->add_flag("--no-restore-volume", o->noRestore,
                 "Keep the volume skinning loses or gains: no smooth displacement giving the tets their rest volumes "

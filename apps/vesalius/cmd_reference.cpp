@@ -6,6 +6,7 @@
 #include "command_runner.h"
 #include "common.h"
 #include "full_body_sources.h"
+#include "label_map_input.h"
 #include "shipped_data.h"
 
 #include "vesalius/io/image_io.h"
@@ -28,7 +29,7 @@ long softTissueCount(const ReferenceAnatomy& anatomy) {
 }
 
 struct ReferenceOptions {
-  std::string scan, labels, table, out, name;
+  std::string scan, labels, table, grid, out, name;
   int skinFaces = 20000, tissueFaces = 3000;
   CommonOptions common;
 };
@@ -39,7 +40,7 @@ struct FullBodyOptions {
 };
 
 struct OrgansOptions {
-  std::string scan, organs, organTable, reference, out, templates = shippedTemplates("organs");
+  std::string scan, organs, organTable, grid, reference, out, templates = shippedTemplates("organs");
   patient::ReferenceOrgansOptions method;
   CommonOptions common;
 };
@@ -51,7 +52,7 @@ void runReference(const ReferenceOptions& o, CommandRun& run) {
   run.report.parameter("skin_faces", o.skinFaces);
   run.report.parameter("tissue_faces", o.tissueFaces);
   const Image ct = io::readScan(o.scan);
-  const LabelMap labels = io::readLabelMap(o.labels, o.table);
+  const LabelMap labels = readLabelsOption(o.labels, o.table, o.grid, run.report);
   patient::ScanAnatomyOptions surfaces;
   surfaces.skinFaces = o.skinFaces;
   surfaces.tissueFaces = o.tissueFaces;
@@ -119,7 +120,7 @@ void runOrgans(const OrgansOptions& o, CommandRun& run) {
   run.report.input("organs", o.organs);
   run.report.input("templates", o.templates);
   const Image ct = io::readScan(o.scan);
-  const LabelMap organs = io::readLabelMap(o.organs, o.organTable);
+  const LabelMap organs = readLabelsOption(o.organs, o.organTable, o.grid, run.report);
   const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
   ReferenceAnatomy reference;
   if (!o.reference.empty()) {
@@ -159,7 +160,9 @@ void addReferenceCommand(CLI::App& app) {
   cmd->require_subcommand(1);
   CLI::App* torso = cmd->add_subcommand("torso", "Reference anatomy from a labelled CT: body surface as skin, every label as a tissue");
   torso->add_option("--scan", o->scan, "The CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
-  torso->add_option("--labels", o->labels, "Its label map (TotalSegmentator names: bones, muscles, organs)")->required();
+  addLabelsOption(*torso, o->labels, o->grid,
+                  "Its label map (TotalSegmentator names: bones, muscles, organs); an RT Structure Set with --grid")
+      ->required();
   torso->add_option("--label-table", o->table, "Label table (TSV or Slicer .ctbl) naming the labels");
   torso->add_option("--name", o->name, "Name stored in reference.json");
   torso->add_option("--skin-faces", o->skinFaces, "Triangles of the skin surface")->capture_default_str();
@@ -201,7 +204,9 @@ void addReferenceCommand(CLI::App& app) {
   CLI::App* organs = cmd->add_subcommand(
       "organs", "Organs and muscles of a labelled CT carried into the full-body reference's skin (its virtual patient, transferred back)");
   organs->add_option("--scan", g->scan, "The CT (NIfTI, NRRD, MetaImage, DICOM folder)")->required();
-  organs->add_option("--organs", g->organs, "Its organ label map (TotalSegmentator's names)")->required();
+  addLabelsOption(*organs, g->organs, g->grid,
+                  "Its organ label map (TotalSegmentator's names); an RT Structure Set with --grid", "--organs")
+      ->required();
   organs->add_option("--organ-table", g->organTable, "Its label table (default: the one beside it)");
   organs->add_option("--templates", g->templates, "Organ template library fitted to the labels")->capture_default_str();
   organs->add_option("--reference", g->reference,

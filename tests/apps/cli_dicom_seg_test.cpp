@@ -3,7 +3,10 @@
 // read back with DCMTK and with our reader against `segment --out X.nii.gz`; `labels` passing the
 // references on; `info` on a SEG; a cut file refused in one line; `segment` and `labels` writing RT
 // Structure Sets (.rtstruct.dcm) that refer to the series and fill back to the NIfTI's voxels; `labels`
-// and `surface` reading them onto the scan --grid names, and refusing them without --grid.
+// and `surface` reading them onto the scan --grid names, and refusing them without --grid; one without an
+// extension found by its content, one of another frame of reference refused; `reference torso` and `pose`
+// reading one with --grid as they read the same map in NIfTI, `reference organs` and `patient` reading one
+// with --grid before their work.
 #include "run_command.h"
 #include "test_ct_3slice.h"
 #include "test_data.h"
@@ -42,6 +45,12 @@ std::string fresh(const std::string& name) {
   for (const std::string& table : io::labelTableSidecarPaths(path.string())) fs::remove(table);
   const std::string stem = path.string().substr(0, path.string().size() - fileExtension(path.string()).size());
   fs::remove(stem + ".png");  // segment's picture
+  return path.string();
+}
+
+std::string freshFolder(const std::string& name) {
+  const fs::path path = fs::path(outputDir()) / name;
+  fs::remove_all(path);
   return path.string();
 }
 
@@ -379,6 +388,141 @@ TEST(CliDicomSeg, AnRtStructWithoutGridIsOneLineAndGridIsOnlyForOne) {
   expectContains(r.err, "--labels");
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(mesh));
+}
+
+// An RT Structure Set as PACS exports it, with no extension: found by its content, read onto the series
+// --grid names, refused without --grid; onto a series of another frame of reference (TotalSegmentator's
+// JPEG 2000 series for one written on dcmqi's) refused in one line naming both, exit 3 (bad input).
+TEST(CliDicomSeg, AnRtStructWithoutExtensionIsFoundAndAnotherFrameIsRefused) {
+  const Image scan = io::readScan(kCt3SliceFolder);
+  const LabelMap map = softTissueAndBone(scan);
+  const std::optional<io::DicomSourceSeries> source = io::readDicomSource(kCt3SliceFolder);
+  ASSERT_TRUE(source);
+  const std::string written = fresh("pacs.rtstruct.dcm"), rt = fresh("RS000001"), back = fresh("pacs-back.nii.gz");
+  io::writeDicomRtStruct(written, map, &*source);
+  fs::copy_file(written, rt);
+  CommandResult r = runVesalius({"labels", "extract", "--labels", rt, "--grid", kCt3SliceFolder, "--label",
+                                 "soft_tissue", "--label", "bone", "--out", back});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(compareLabels(io::readLabelMap(back), map, {1, 2}, "RS000001 onto its series"), 0u);
+
+  r = runVesalius({"labels", "extract", "--labels", rt, "--label", "bone", "--out", fresh("pacs-no-grid.nii.gz")});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  expectContains(r.err, rt + ": an RT Structure Set");
+
+  const std::string other = kData + "/dicom/ct-series-jpeg2000";
+  r = runVesalius({"labels", "extract", "--labels", rt, "--grid", other, "--label", "bone", "--out",
+                   fresh("pacs-other.nii.gz")});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 3) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  expectContains(r.err, rt + ": ");
+  expectContains(r.err, other);
+  expectContains(r.err, "Frame of Reference " + source->frameOfReferenceUid);
+  EXPECT_FALSE(fs::exists(fresh("pacs-other.nii.gz")));
+}
+
+// The commands that read a label map under another option than --labels, or without the shared option
+// until now, read an RT Structure Set onto the --grid scan as the same map in NIfTI: `reference torso`
+// makes the same reference of the shipped CT's 30-slice labels, `pose` the same posed labels.
+TEST(CliDicomSeg, ReferenceTorsoReadsAnRtStructOntoTheGrid) {
+  const std::string dir = kData + "/ct-abdomen-pelvis/";
+  const std::string ct = dir + "example_ct_sm.nii.gz", labels = dir + "example_seg.nii.gz",
+                    table = dir + "labels_total_v2.tsv";
+  const std::string rt = fresh("torso.rtstruct.dcm"), fromRt = freshFolder("torso-rt"),
+                    fromNifti = freshFolder("torso-nifti");
+  io::writeDicomRtStruct(rt, io::readLabelMap(labels, table), nullptr);
+  const CommandResult a = runVesalius({"reference", "torso", "--scan", ct, "--labels", rt, "--grid", ct,
+                                       "--label-table", table, "--out", fromRt, "--progress", "none"});
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  const CommandResult b = runVesalius({"reference", "torso", "--scan", ct, "--labels", labels, "--label-table", table,
+                                       "--out", fromNifti, "--progress", "none"});
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  std::cout << a.out << b.out;
+  EXPECT_EQ(a.out.substr(fromRt.size()), b.out.substr(fromNifti.size()));
+}
+
+TEST(CliDicomSeg, PoseReadsAnRtStructOntoTheGrid) {
+  const std::string rig = freshFolder("pose-rig"), fromRt = freshFolder("pose-rt"),
+                    fromNifti = freshFolder("pose-nifti");
+  CommandResult r = runVesalius({"rig", "--skin", kData + "/body/shapes/mh_neutral_body.obj", "--skeleton",
+                                 kData + "/body/default.mhskel", "--voxel-size", "8", "--target-tets", "8000",
+                                 "--no-cor-centres", "--out", rig, "--progress", "none"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // The 3-slice CT's two classes, as a label map in the rig's space.
+  const LabelMap map = softTissueAndBone(io::readScan(kCt3SliceFolder));
+  const std::string rt = fresh("pose.rtstruct.dcm"), nifti = fresh("pose.nii.gz");
+  io::writeDicomRtStruct(rt, map, nullptr);
+  io::writeLabelMap(nifti, map);
+  const std::vector<std::string> pose{"pose", "--anatomy", rig, "--angles", "upperleg01.L=-30,0,0", "--progress", "none"};
+  std::vector<std::string> args = pose;
+  // Onto the NIfTI: written without a source series, the structure set has a frame of reference of its own.
+  args.insert(args.end(), {"--labels", rt, "--grid", nifti, "--out", fromRt});
+  r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  args = pose;
+  args.insert(args.end(), {"--labels", nifti, "--out", fromNifti});
+  ASSERT_EQ(runVesalius(args).exitCode, 0);
+  // The posed copy keeps the input's name, and so its format.
+  const LabelMap posedNifti = io::readLabelMap(fromNifti + "/pose.nii.gz");
+  const LabelMap posedRt = io::readDicomRtStruct(fromRt + "/pose.rtstruct.dcm", posedNifti.labels.geometry);
+  EXPECT_EQ(compareLabels(posedRt, posedNifti, {1, 2}, "posed pose.rtstruct.dcm"), 0u);
+  // Without --grid, refused before the rig is embedded.
+  args = pose;
+  args.insert(args.end(), {"--labels", rt, "--out", freshFolder("pose-no-grid")});
+  r = runVesalius(args);
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  expectContains(r.err, "pass --grid");
+}
+
+// `reference organs` and `patient` take --organs as an RT Structure Set with --grid. Their whole runs take
+// minutes, so the tests stop at a refusal that comes after the organs are read: an empty --reference folder
+// for `reference organs`; for `patient`, a table naming no organ, refused as for the same map in NIfTI (the
+// table replaces the ROIs' names). Without --grid the structure set is refused (exit 2).
+TEST(CliDicomSeg, ReferenceOrgansAndPatientReadAnRtStructOntoTheGrid) {
+  const std::string dir = kData + "/ct-abdomen-pelvis/";
+  const std::string ct = dir + "example_ct_sm.nii.gz", labels = dir + "example_seg.nii.gz",
+                    table = dir + "labels_total_v2.tsv";
+  const std::string rt = fresh("organs-sm.rtstruct.dcm"), unknown = fresh("organs-unknown.tsv");
+  io::writeDicomRtStruct(rt, io::readLabelMap(labels, table), nullptr);
+  {
+    std::ofstream t(unknown);
+    t << "label\tname\n";
+    for (int id = 1; id <= 200; ++id) t << id << "\tstructure_" << id << "\n";
+  }
+  const std::string empty = freshFolder("not-a-reference"), out = freshFolder("organs-out");
+  fs::create_directories(empty);
+
+  CommandResult r = runVesalius({"reference", "organs", "--scan", ct, "--organs", rt, "--grid", ct, "--organ-table",
+                                 table, "--reference", empty, "--out", out, "--progress", "none"});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 3) << r.err;
+  expectContains(r.err, empty);
+  EXPECT_EQ(r.err.find(rt), std::string::npos) << r.err;
+
+  r = runVesalius({"patient", "--scan", ct, "--organs", rt, "--grid", ct, "--organ-table", unknown, "--out", out,
+                   "--progress", "none"});
+  const CommandResult nifti = runVesalius(
+      {"patient", "--scan", ct, "--organs", labels, "--organ-table", unknown, "--out", out, "--progress", "none"});
+  std::cout << r.err << nifti.err;
+  EXPECT_EQ(r.exitCode, 3) << r.err;
+  EXPECT_EQ(nifti.exitCode, 3) << nifti.err;
+  ASSERT_EQ(r.err.rfind("vesalius: " + rt + ": ", 0), 0u) << r.err;
+  ASSERT_EQ(nifti.err.rfind("vesalius: " + labels + ": ", 0), 0u) << nifti.err;
+  EXPECT_EQ(r.err.substr(std::string("vesalius: ").size() + rt.size()),
+            nifti.err.substr(std::string("vesalius: ").size() + labels.size()));
+
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"reference", "organs", "--scan", ct, "--organs", rt, "--out", out},
+        std::vector<std::string>{"patient", "--scan", ct, "--organs", rt, "--out", out}}) {
+    r = runVesalius(args);
+    std::cout << r.err;
+    EXPECT_EQ(r.exitCode, 2) << args[0];
+    expectContains(r.err, rt + ": an RT Structure Set");
+  }
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "image_io_itk.h"
 
+#include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -81,6 +82,19 @@ void loadDicom(DcmFileFormat& file, const std::string& path, bool withPixels) {
 std::string sopClassOf(DcmFileFormat& file) {
   std::string uid = text(*file.getDataset(), DCM_SOPClassUID);
   return uid.empty() ? text(*file.getMetaInfo(), DCM_MediaStorageSOPClassUID) : uid;
+}
+
+bool isDicomFileOfClass(const std::string& path, const std::string& sopClass) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  if (fileExtension(path) != ".dcm" && !itk_seam::hasDicomPreamble(path)) return false;
+  try {
+    DcmFileFormat file;
+    loadDicom(file, path, false);
+    return sopClassOf(file) == sopClass;
+  } catch (const BadInput&) {
+    return false;
+  }
 }
 
 std::string labelDescription(Label id) { return "label " + std::to_string(id); }

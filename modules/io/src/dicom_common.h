@@ -43,6 +43,10 @@ void loadDicom(DcmFileFormat& file, const std::string& path, bool withPixels);
 // The SOP Class UID of the dataset, else of the file meta header.
 std::string sopClassOf(DcmFileFormat& file);
 
+// True if `path` is a regular file, named .dcm or with the DICOM Part 10 preamble ("DICM" at byte 128),
+// whose SOP Class is `sopClass`. Any other file costs the 132 bytes of the preamble check; a folder nothing.
+bool isDicomFileOfClass(const std::string& path, const std::string& sopClass);
+
 // "label <id>": the description that keeps a label's id where DICOM numbers its segments or ROIs 1, 2, ...
 std::string labelDescription(Label id);
 // The id in such a description; 0 for any other text or an id outside 1..65535.

@@ -3,8 +3,10 @@
 #include "vesalius/io/dicom_rtstruct.h"
 
 #include "dicom_common.h"
+#include "label_names.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/image_io.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -17,16 +19,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <stdexcept>
 
 namespace vesalius::io {
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace dicom;
 
 // The Referenced SOP Class UID of an RT Referenced Study item: Detached Study Management (retired), which
@@ -382,45 +384,32 @@ std::vector<Roi> roisOf(DRTStructureSetIOD& rt, const std::string& path) {
   return rois;
 }
 
-}  // namespace
-
-bool isDicomRtStructPath(const std::string& path) {
-  const std::string suffix = ".rtstruct.dcm";
-  if (path.size() < suffix.size()) return false;
-  std::string tail = path.substr(path.size() - suffix.size());
-  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return tail == suffix;
-}
-
-bool isDicomRtStructFile(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) return false;
-  try {
-    DcmFileFormat file;
-    loadDicom(file, path, false);
-    return sopClassOf(file) == UID_RTStructureSetStorage;
-  } catch (const BadInput&) {
-    return false;
-  }
-}
-
-void writeDicomRtStruct(const std::string& path, const LabelMap& labelMap, const DicomSourceSeries* source,
-                        const WriteOptions& options) {
-  if (std::int64_t(labelMap.labels.values.size()) != labelMap.labels.geometry.voxelCount())
-    throw std::invalid_argument(path + ": label values do not fill the grid");
-  writeAtomically(path, options, [&](const std::string& temporaryPath) {
-    writeRtStructFile(temporaryPath, path, labelMap, source);
-  });
-}
-
-LabelMap readDicomRtStruct(const std::string& path, const GridGeometry& grid) {
+// Loads the structure set at `path` into `rt`; BadInput for a file that is none.
+void readStructureSet(DRTStructureSetIOD& rt, const std::string& path) {
   DcmFileFormat file;
   loadDicom(file, path, true);
   const std::string sopClass = sopClassOf(file);
   if (sopClass != UID_RTStructureSetStorage)
     throw BadInput(path, "not a DICOM RT Structure Set (SOP Class UID " + (sopClass.empty() ? "missing" : sopClass) + ")");
-  DRTStructureSetIOD rt;
   check(rt.read(*file.getDataset()), path, "cannot read the RT Structure Set");
+}
+
+// The frames of reference the contours are in: those the ROIs refer to, else (ROIs naming none) those of
+// the Referenced Frame of Reference Sequence. Empty when the structure set names none.
+std::set<std::string> framesOfReference(DRTStructureSetIOD& rt) {
+  std::set<std::string> frames;
+  OFString uid;
+  DRTStructureSetROISequence& structures = rt.getStructureSetROISequence();
+  for (std::size_t n = 0; n < structures.getNumberOfItems(); ++n)
+    if (structures.getItem(n).getReferencedFrameOfReferenceUID(uid).good() && !uid.empty()) frames.insert(uid.c_str());
+  DRTReferencedFrameOfReferenceSequence& listed = rt.getReferencedFrameOfReferenceSequence();
+  for (std::size_t n = 0; frames.empty() && n < listed.getNumberOfItems(); ++n)
+    if (listed.getItem(n).getFrameOfReferenceUID(uid).good() && !uid.empty()) frames.insert(uid.c_str());
+  return frames;
+}
+
+// The ROIs' contours filled onto `grid` (see the header).
+LabelMap rasterize(DRTStructureSetIOD& rt, const GridGeometry& grid, const std::string& path) {
   std::vector<Roi> rois = roisOf(rt, path);
   DRTROIContourSequence& contours = rt.getROIContourSequence();
   for (std::size_t n = 0; n < contours.getNumberOfItems(); ++n) {
@@ -468,6 +457,49 @@ LabelMap readDicomRtStruct(const std::string& path, const GridGeometry& grid) {
     for (const auto& [start, length] : runs[n])
       std::fill_n(map.labels.values.begin() + start, length, rois[n].entry.id);
   for (const Roi& roi : rois) map.table.add(roi.entry);
+  return map;
+}
+
+}  // namespace
+
+bool isDicomRtStructPath(const std::string& path) {
+  const std::string suffix = ".rtstruct.dcm";
+  if (path.size() < suffix.size()) return false;
+  std::string tail = path.substr(path.size() - suffix.size());
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return tail == suffix;
+}
+
+bool isDicomRtStructFile(const std::string& path) { return isDicomFileOfClass(path, UID_RTStructureSetStorage); }
+
+void writeDicomRtStruct(const std::string& path, const LabelMap& labelMap, const DicomSourceSeries* source,
+                        const WriteOptions& options) {
+  if (std::int64_t(labelMap.labels.values.size()) != labelMap.labels.geometry.voxelCount())
+    throw std::invalid_argument(path + ": label values do not fill the grid");
+  writeAtomically(path, options, [&](const std::string& temporaryPath) {
+    writeRtStructFile(temporaryPath, path, labelMap, source);
+  });
+}
+
+LabelMap readDicomRtStruct(const std::string& path, const GridGeometry& grid) {
+  DRTStructureSetIOD rt;
+  readStructureSet(rt, path);
+  return rasterize(rt, grid, path);
+}
+
+LabelMap readDicomRtStructOntoScan(const std::string& path, const std::string& scanPath,
+                                   const std::string& tablePath) {
+  DRTStructureSetIOD rt;
+  readStructureSet(rt, path);
+  const std::optional<DicomSourceSeries> scan = readDicomSource(scanPath);
+  if (scan && !scan->frameOfReferenceUid.empty())
+    for (const std::string& frame : framesOfReference(rt))
+      if (frame != scan->frameOfReferenceUid)
+        throw BadInput(path, "its contours are in Frame of Reference " + frame + " and the scan " + scanPath +
+                                 " is in " + scan->frameOfReferenceUid +
+                                 ": another patient space, where they would land in the wrong place");
+  LabelMap map = rasterize(rt, describeScan(scanPath).geometry, path);
+  applyExplicitTable(map, tablePath);
   return map;
 }
 

@@ -435,17 +435,7 @@ bool isDicomSegPath(const std::string& path) {
   return fileExtension(path) == ".dcm" && !isDicomRtStructPath(path);
 }
 
-bool isDicomSegFile(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) return false;
-  try {
-    DcmFileFormat file;
-    loadDicom(file, path, false);
-    return sopClassOf(file) == UID_SegmentationStorage;
-  } catch (const BadInput&) {
-    return false;
-  }
-}
+bool isDicomSegFile(const std::string& path) { return isDicomFileOfClass(path, UID_SegmentationStorage); }
 
 std::optional<DicomSourceSeries> readDicomSource(const std::string& path, const std::string& seriesUid) {
   std::error_code error;

@@ -44,13 +44,6 @@ void describeSeries(RawDicomSeries& series) {
   series.modality = tagValue(*io, "0008|0060");
 }
 
-// "DICM" after the 128-byte preamble, as every DICOM Part 10 file has.
-bool hasDicomMagic(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[132] = {};
-  return in.read(magic, sizeof magic) && std::memcmp(magic + 128, "DICM", 4) == 0;
-}
-
 // GDCMSeriesFileNames prints a multi-line ITK warning for a folder without DICOM files; look first. Each
 // DICOM file is walked before GDCM parses it (see checkDicomFileStructure).
 bool holdsDicomFile(const std::string& folder) {
@@ -195,9 +188,15 @@ void checkDicomFileStructure(const std::string& path) {
   walk.elements(at, bytes.size(), explicitVr, bigEndian, 0);
 }
 
+bool hasDicomPreamble(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[132] = {};
+  return in.read(magic, sizeof magic) && std::memcmp(magic + 128, "DICM", 4) == 0;
+}
+
 bool isDicomFile(const std::string& path) {
   // GDCM aborts the process on some cut files even when asked only whether it can read them.
-  if (hasDicomMagic(path)) {
+  if (hasDicomPreamble(path)) {
     checkDicomFileStructure(path);
     return true;
   }

@@ -3,6 +3,7 @@
 #include "vesalius/io/image_io.h"
 
 #include "image_io_itk.h"
+#include "label_names.h"
 #include "raw_geometry.h"
 
 #include "vesalius/core/error.h"
@@ -260,7 +261,14 @@ LabelTable labelTableFor(const std::string& labelMapPath, const std::string& tab
   return {};
 }
 
-// Names every label present in the image that the table does not know: "label_<id>".
+// Label maps in one file that names its labels (3D Slicer segmentations, DICOM SEG, RT Structure Sets):
+// no label tables beside them.
+bool namesItsLabels(const std::string& path) {
+  return isSlicerSegmentationPath(path) || isDicomSegPath(path) || isDicomRtStructPath(path);
+}
+
+}  // namespace
+
 void nameUnlistedLabels(const std::vector<Label>& labels, LabelTable& table) {
   std::vector<bool> present(65536, false);
   for (Label id : labels) present[id] = true;
@@ -269,13 +277,10 @@ void nameUnlistedLabels(const std::vector<Label>& labels, LabelTable& table) {
       table.add(LabelEntry{Label(id), "label_" + std::to_string(id), defaultLabelColor(Label(id))});
 }
 
-// Label maps in one file that names its labels (3D Slicer segmentations, DICOM SEG, RT Structure Sets):
-// no label tables beside them.
-bool namesItsLabels(const std::string& path) {
-  return isSlicerSegmentationPath(path) || isDicomSegPath(path) || isDicomRtStructPath(path);
+void applyExplicitTable(LabelMap& map, const std::string& tablePath) {
+  if (!tablePath.empty()) map.table = readLabelTable(tablePath);
+  nameUnlistedLabels(map.labels.values, map.table);
 }
-
-}  // namespace
 
 GridGeometry geometryOf(const itk_seam::RawHeader& header) {
   GridGeometry geometry;
@@ -329,8 +334,7 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
   if (format == ScanFormat::DicomFile) {
     // A DICOM SEG names its segments; an explicit table still wins. Other DICOM files are refused there.
     labelMap = readDicomSeg(path).labelMap;
-    if (!tablePath.empty()) labelMap.table = readLabelTable(tablePath);
-    nameUnlistedLabels(labelMap.labels.values, labelMap.table);
+    applyExplicitTable(labelMap, tablePath);
     return labelMap;
   }
   if (format == ScanFormat::DicomFolder)
@@ -339,8 +343,7 @@ LabelMap readLabelMap(const std::string& path, const std::string& tablePath) {
   if (isSlicerSegmentationPath(path)) {
     // The segments name themselves; an explicit table still wins.
     labelMap = mergeSegmentationLayers(readSlicerSegmentation(path), path);
-    if (!tablePath.empty()) labelMap.table = readLabelTable(tablePath);
-    nameUnlistedLabels(labelMap.labels.values, labelMap.table);
+    applyExplicitTable(labelMap, tablePath);
     return labelMap;
   }
   labelMap.labels = readLabelGrid(path);

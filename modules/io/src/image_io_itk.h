@@ -45,6 +45,10 @@ void registerImageFactories();
 // "ITK ERROR: Class(0x...):" prefix.
 std::string itkErrorReason(const itk::ExceptionObject& error);
 
+// True if `path` has "DICM" after the 128-byte preamble, as every DICOM Part 10 file has: 132 bytes read,
+// nothing parsed.
+bool hasDicomPreamble(const std::string& path);
+
 // True if GDCM recognises `path` as a DICOM file (for files without a known extension).
 bool isDicomFile(const std::string& path);
 

@@ -1,7 +1,8 @@
 // RT Structure Sets (io/dicom_rtstruct.h): the shipped CT's labels, a ring with a hole, an oblique head CT
 // and a label map on the shipped dcmqi CT series written, read back with DCMTK's dcmrt and with our reader
 // onto the same grid (voxel-boundary contours filled by the even-odd rule give the voxels back exactly);
-// broken files refused in one line.
+// read onto a scan: an explicit table applied as to a DICOM SEG, a series of another frame of reference
+// refused; found by content under any name; broken files refused in one line.
 #include "vesalius/core/error.h"
 #include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
@@ -310,6 +311,114 @@ TEST(DicomRtStruct, RefersToTheSourceSeries) {
   std::cout << "ct-3slice: " << checked << " contours refer to their slice's image\n";
   EXPECT_EQ(checked, counts.contours);
   EXPECT_EQ(expectSameVoxels(readDicomRtStruct(path, scan.geometry), map, "ct-3slice"), 0);
+}
+
+// The 3-slice series' two classes written as a structure set referring to the series.
+struct OnTheSeries {
+  DicomSourceSeries source;
+  Image scan;
+  LabelMap map;
+  std::string path;
+};
+
+OnTheSeries writtenOnTheSeries(const std::string& name) {
+  OnTheSeries written;
+  const std::optional<DicomSourceSeries> source = readDicomSource(kCtFolder);
+  EXPECT_TRUE(source);
+  if (source) written.source = *source;
+  written.scan = readScan(kCtFolder);
+  written.map = test::softTissueAndBone(written.scan);
+  written.path = fresh(name);
+  writeDicomRtStruct(written.path, written.map, &written.source);
+  return written;
+}
+
+// An explicit table takes the place of the ROIs' names and colours whole, and labels it leaves out are
+// named "label_<id>": the rule readLabelMap applies to a DICOM SEG, checked against one written from the
+// same map. Without a table the ROIs name themselves.
+TEST(DicomRtStruct, AnExplicitTableReplacesTheRoiNamesAsForASeg) {
+  const OnTheSeries written = writtenOnTheSeries("table-rule.rtstruct.dcm");
+  const LabelMap& map = written.map;
+  const std::string &rt = written.path, seg = fresh("table-rule.seg.dcm");
+  writeDicomSeg(seg, map, &written.source);
+  // The table names bone only, and gives soft tissue's name to a label the map does not have.
+  const std::string table = fresh("table-rule.tsv");
+  std::ofstream(table) << "label\tname\tr\tg\tb\n2\tcortical_bone\t10\t20\t30\n7\tsoft_tissue\t1\t2\t3\n";
+
+  const LabelMap own = readDicomRtStructOntoScan(rt, kCtFolder);
+  EXPECT_EQ(expectSameVoxels(own, map, "ct-3slice onto its series"), 0);
+  ASSERT_EQ(own.table.entries.size(), 2u);
+  EXPECT_EQ(own.table.find(1)->name, "soft_tissue");
+  EXPECT_EQ(own.table.find(2)->name, "bone");
+
+  const LabelMap named = readDicomRtStructOntoScan(rt, kCtFolder, table);
+  const LabelMap segNamed = readLabelMap(seg, table);
+  EXPECT_EQ(expectSameVoxels(named, map, "ct-3slice with a table"), 0);
+  for (const LabelEntry& e : named.table.entries)
+    std::cout << "RT Structure Set with the table: " << e.id << " " << e.name << " (" << int(e.color[0]) << ", "
+              << int(e.color[1]) << ", " << int(e.color[2]) << ")\n";
+  ASSERT_EQ(named.table.entries.size(), 3u);
+  EXPECT_EQ(named.table.find(2)->name, "cortical_bone");
+  EXPECT_EQ(named.table.find(2)->color, (std::array<std::uint8_t, 3>{{10, 20, 30}}));
+  EXPECT_EQ(named.table.find(7)->name, "soft_tissue");
+  EXPECT_EQ(named.table.find(1)->name, "label_1");
+  EXPECT_EQ(named.table.find(1)->color, defaultLabelColor(1));
+  ASSERT_EQ(segNamed.table.entries.size(), named.table.entries.size());
+  for (const LabelEntry& e : segNamed.table.entries) {
+    const LabelEntry* same = named.table.find(e.id);
+    ASSERT_NE(same, nullptr) << e.id;
+    EXPECT_EQ(same->name, e.name) << e.id;
+    EXPECT_EQ(same->color, e.color) << e.id;
+  }
+}
+
+// The contours are in one patient space with a scan of their own frame of reference (or of none: a NIfTI),
+// and refused onto a series of another: TotalSegmentator's JPEG 2000 series for one written on dcmqi's.
+TEST(DicomRtStruct, AScanOfAnotherFrameOfReferenceIsRefused) {
+  const OnTheSeries written = writtenOnTheSeries("frame.rtstruct.dcm");
+  const LabelMap& map = written.map;
+  const DicomSourceSeries* source = &written.source;
+  const std::string &rt = written.path, nifti = fresh("frame-ct.nii.gz");
+  writeScan(nifti, written.scan);
+  EXPECT_EQ(expectSameVoxels(readDicomRtStructOntoScan(rt, kCtFolder), map, "onto its own series"), 0);
+  EXPECT_EQ(expectSameVoxels(readDicomRtStructOntoScan(rt, nifti), map, "onto a NIfTI of it"), 0);
+
+  const std::string other = kData + "/dicom/ct-series-jpeg2000";
+  const std::optional<DicomSourceSeries> otherSource = readDicomSource(other);
+  ASSERT_TRUE(otherSource);
+  std::cout << "frames of reference: " << source->frameOfReferenceUid << " and " << otherSource->frameOfReferenceUid
+            << '\n';
+  ASSERT_NE(otherSource->frameOfReferenceUid, source->frameOfReferenceUid);
+  try {
+    readDicomRtStructOntoScan(rt, other);
+    ADD_FAILURE() << rt << " was read onto " << other;
+  } catch (const BadInput& e) {
+    const std::string message = e.what();
+    std::cout << message << '\n';
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& part : {rt, other, source->frameOfReferenceUid, otherSource->frameOfReferenceUid,
+                                    std::string("Frame of Reference")})
+      EXPECT_NE(message.find(part), std::string::npos) << part << " not in: " << message;
+  }
+}
+
+// A structure set is found by its content under any name (PACS exports often have no extension or .IMA);
+// a NIfTI, a DICOM CT image, a SEG, a folder and a short file are not taken for one.
+TEST(DicomRtStruct, FoundByItsContentUnderAnyName) {
+  const Image scan = readScan(kCtFolder);
+  const LabelMap map = test::softTissueAndBone(scan);
+  const std::string rt = fresh("content.rtstruct.dcm"), bare = fresh("RS1"), ima = fresh("RS1.IMA"),
+                    seg = fresh("content.dcm"), nifti = fresh("content.nii.gz"), tiny = fresh("tiny");
+  writeDicomRtStruct(rt, map, nullptr);
+  fs::copy_file(rt, bare);
+  fs::copy_file(rt, ima);
+  writeDicomSeg(seg, map, nullptr);
+  writeLabelMap(nifti, map, {true});
+  std::ofstream(tiny) << "DICM";
+  for (const std::string& path : {rt, bare, ima}) EXPECT_TRUE(isDicomRtStructFile(path)) << path;
+  for (const std::string& path : {seg, nifti, tiny, kCtFolder, kCtFolder + "/01.dcm", kData + "/nowhere"})
+    EXPECT_FALSE(isDicomRtStructFile(path)) << path;
+  EXPECT_EQ(expectSameVoxels(readDicomRtStruct(bare, scan.geometry), map, "RS1"), 0);
 }
 
 void expectOneLineBadInput(const std::string& path, const GridGeometry& grid, const std::string& fragment) {

@@ -47,7 +47,10 @@ namespace vesalius::io {
 // True for a path ending ".rtstruct.dcm" (any case): label maps written there are RT Structure Sets.
 bool isDicomRtStructPath(const std::string& path);
 
-// True if `path` is a readable DICOM file whose SOP Class is RT Structure Set Storage.
+// True if `path` is a regular file holding a DICOM RT Structure Set, whatever its name (PACS exports often
+// have none or ".IMA"): a file named .dcm, or one with the DICOM Part 10 preamble ("DICM" at byte 128),
+// whose SOP Class is RT Structure Set Storage. Other files cost the 132 bytes of the preamble check only;
+// folders are not opened.
 bool isDicomRtStructFile(const std::string& path);
 
 // Writes `labelMap` as an RT Structure Set (see above), atomically and no-clobber (core/atomic_file.h).
@@ -61,5 +64,19 @@ void writeDicomRtStruct(const std::string& path, const LabelMap& labelMap, const
 // with fewer than three points, not planar (a point more than 0.02 mm off the contour's plane), or off
 // every slice of the grid.
 LabelMap readDicomRtStruct(const std::string& path, const GridGeometry& grid);
+
+// Reads an RT Structure Set onto the grid of the scan at `scanPath` (any scan describeScan reads,
+// image_io.h), with an explicit table as readLabelMap takes one for a DICOM SEG: the table at `tablePath`,
+// if given, replaces the ROIs' names and colours whole, and labels present that it leaves out are named
+// "label_<id>".
+// Frame of reference: a scan that has a Frame of Reference UID (a DICOM series or image) must be in every
+// frame of reference the structure set's ROIs refer to (their Referenced Frame of Reference UIDs, else
+// those of its Referenced Frame of Reference Sequence): contours in another frame are in another patient
+// space and would fill the wrong voxels without any other sign of it. A NIfTI, NRRD or MetaImage scan has
+// no such UID; its grid is taken to be in the structure set's patient space, as is a structure set that
+// names no frame. Throws BadInput naming both files and both UIDs when the frames differ, and as
+// readDicomRtStruct, describeScan, readDicomSource (dicom_seg.h) and readLabelTable (label_table_io.h).
+LabelMap readDicomRtStructOntoScan(const std::string& path, const std::string& scanPath,
+                                   const std::string& tablePath = "");
 
 }  // namespace vesalius::io

@@ -52,7 +52,8 @@ struct DicomSourceSeries {
 // written there are DICOM SEG objects.
 bool isDicomSegPath(const std::string& path);
 
-// True if `path` is a readable DICOM file whose SOP Class is Segmentation Storage.
+// True if `path` is a readable DICOM file (named .dcm, or with the DICOM preamble) whose SOP Class is
+// Segmentation Storage.
 bool isDicomSegFile(const std::string& path);
 
 // The series a scan or segmentation at `path` comes from: for a DICOM folder, the series readScan reads
