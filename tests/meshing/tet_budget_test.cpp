@@ -3,6 +3,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/tet_quality.h"
+#include "vesalius/io/mesh_io.h"
 #include "vesalius/meshing/tet_budget.h"
 #include "vesalius/meshing/tetrahedralize.h"
 #include "test_shapes.h"
@@ -49,12 +50,34 @@ TEST(TetBudget, TargetHeldOnSurfacesOfAnyDensity) {
   EXPECT_THROW(meshing::tetrahedralizeWithinBudget(ellipsoid(2), options), UsageError);
 }
 
+// Small targets on real organ shapes (the shipped templates: 274 to 3,000 triangles): at 200 triangles
+// TetGen's refinement still gives more than twice a target of a few thousand, so the halving goes on below.
+TEST(TetBudget, SmallTargetsHeldOnOrganTemplates) {
+  const std::string templates = std::string(VESALIUS_TESTDATA) + "/../templates/organs/";
+  for (const char* organ : {"liver", "spleen", "kidney_left", "kidney_right"}) {
+    const TriMesh surface = io::readTriMesh(templates + organ + ".obj");
+    const double exact = enclosedVolume(surface.V, surface.F);
+    for (long target : {500L, 1000L, 2000L}) {
+      TetrahedralizeOptions options;
+      options.targetTets = target;
+      const meshing::BudgetedTets result = meshing::tetrahedralizeWithinBudget(surface, options, organ);
+      const double volume = tetVolumes(result.tets.V, result.tets.T).sum();
+      std::cout << organ << ", target " << target << ": " << result.surfaceFaces << " triangles given to TetGen, "
+                << result.tets.T.rows() << " tets, volume " << volume / exact << " of the surface's\n";
+      EXPECT_LE(result.tets.T.rows(), 2 * target) << organ;
+      EXPECT_EQ(tetQualityReport(result.tets.V, result.tets.T).inverted, 0) << organ;
+    }
+  }
+}
+
 // A surface too coarse to decimate further and a target below what its triangles allow: TetGen's
 // refinement splits the surface triangles it encroaches on. The surface kept as given (-Y) is then taken
 // where it gives fewer tets: never more tets than the plain run, the volume kept, none inverted.
 TEST(TetBudget, ASurfaceDecimationCannotTakeIsKeptWhenThatGivesFewerTets) {
-  for (int levels = 1; levels <= 2; ++levels) {  // at most 200 triangles: nothing to decimate
-    const TriMesh surface = ellipsoid(levels);
+  for (int levels = 0; levels <= 1; ++levels) {  // at most 50 triangles: nothing to decimate
+    // Flat (5 mm thick), so that TetGen's refinement splits its triangles.
+    TriMesh surface = test::sphere(levels);
+    surface.V = surface.V * Eigen::Vector3d(40, 60, 5).asDiagonal();
     TetrahedralizeOptions options;
     options.targetTets = surface.F.rows() / 8;
     options.keepSurfaceOverBudget = true;

@@ -20,8 +20,9 @@
 namespace vesalius::meshing {
 
 struct TemplateTetsOptions {
-  // About this many tets: with `faces` 0, within twice it unless the surface is coarsened to the 200
-  // triangles below which tet_budget.h stops (a thin waist then still refines past it).
+  // About this many tets: with `faces` 0, within twice it unless the surface is coarsened to the 50
+  // triangles below which tet_budget.h stops, or decimation cannot take it there (a thin waist or a fold
+  // then still refines past it).
   long targetTets = 20000;
   int faces = 0;            // decimate the surface to about this many triangles first; 0: as targetTets allows
 };

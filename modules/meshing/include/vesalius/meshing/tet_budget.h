@@ -5,13 +5,15 @@
 // 280,000. The surface handed to TetGen is therefore coarsened first (quadric decimation,
 // decimate_surface.h; closed by its winding number instead where the decimation crosses itself,
 // closed_surface.h) to facesForTets(target) triangles, and again to half as many while the tets are more
-// than twice the target. Where decimation can take no more faces off and the tets are still more than twice
-// the target, TetGen's refinement has split the surface triangles it encroached on (a thin MakeHuman body's
-// 4 mm voxel surface stops at 12,000 triangles and gave 485,077 tets for 100,000 asked); with
-// TetrahedralizeOptions::keepSurfaceOverBudget the surface is then given to TetGen to keep as it is (-Y:
-// 96,151 tets), when that gives fewer tets within the point budget. (Not for fits: a fitted liver's tets
-// made so gave a refit surface that TetGen could not mesh within its budget.) The caller keeps the full surface and carries its detail by embedding it in the coarse tets, as
-// Wang et al. 2021, §4.3, fits a coarse tet mesh and carries the detailed surface.
+// than twice the target. At 200 triangles TetGen's radius-edge bound is first relaxed to its own default
+// (2.0), and only then is the surface halved further, down to 50 triangles. Where decimation can take no
+// more faces off and the tets are still more than twice the target, TetGen's refinement has split the
+// surface triangles it encroached on (a thin MakeHuman body's 4 mm voxel surface stops at 12,000 triangles
+// and gave 485,077 tets for 100,000 asked); with TetrahedralizeOptions::keepSurfaceOverBudget the surface
+// is then given to TetGen to keep as it is (-Y: 96,151 tets), when that gives fewer tets within the point
+// budget. (Not for fits: a fitted liver's tets made so gave a refit surface that TetGen could not mesh
+// within its budget.) The caller keeps the full surface and carries its detail by embedding it in the
+// coarse tets, as Wang et al. 2021, §4.3, fits a coarse tet mesh and carries the detailed surface.
 #pragma once
 
 #include "vesalius/core/mesh.h"
