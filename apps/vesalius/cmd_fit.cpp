@@ -207,7 +207,8 @@ void addFitCommand(CLI::App& app) {
                   "allows")->check(CLI::Range(0, 100000000))->capture_default_str();
   cmd->add_option("--refits", o->fit.refit.refits,
                   "Fit again up to this many times, each from the fitted shape tetrahedralized afresh (about "
-                  "--target-tets tets, or at --template-faces), while a marker is farther than --max-icp-error: "
+                  "--target-tets tets, or at --template-faces), while a marker is farther than --max-icp-error and the "
+                  "fitted shape meshes within twice --target-tets: "
                   "for a template far from the organ, whose first fit crushes its tets and stalls. --out and "
                   "--surface-out then hold the last refit's tets and their boundary; --embed-out is carried "
                   "through every round (smoothly through the refits)")->check(CLI::Range(0, 20))->capture_default_str();

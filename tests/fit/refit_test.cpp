@@ -1,5 +1,5 @@
 // Refits (fit/refit.h): material points carried by the fit, and the beam of Figs. 4 and 22 refitted from
-// a first fit cut short, tetrahedralized afresh by TetGen between rounds.
+// a first fit cut short, tetrahedralized afresh by TetGen between rounds, and not past a tet budget.
 #include "vesalius/fit/refit.h"
 
 #include "vesalius/core/self_intersections.h"
@@ -88,6 +88,12 @@ TEST(Refit, RefitsGoOnFromAFitCutShort) {
   FitOptions loose = options;
   loose.maxIcpError = 1e3;
   EXPECT_EQ(refit(first, loose, refits, tetGen()).size(), 1u);
+  // No refit on a rest shape meshed past the budget: the first round stays the result.
+  RefitOptions bounded = refits;
+  bounded.maxTets = rounds[1].rest.T.rows() - 1;
+  const std::vector<FitRound> within = refit(first, options, bounded, tetGen());
+  ASSERT_EQ(within.size(), 1u);
+  EXPECT_EQ(within[0].result.V, first.result.V);
 }
 
 }  // namespace

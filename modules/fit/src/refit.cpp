@@ -55,6 +55,7 @@ std::vector<FitRound> refit(FitRound first, const FitOptions& fitOptions, const 
     FitRound next;
     next.markers = carriedMarkers(last.markers, last.rest, last.result.V);
     next.rest = remesh(tetBoundarySurface(last.result.V, last.rest.T));
+    if (options.maxTets > 0 && next.rest.T.rows() > options.maxTets) break;
     const Eigen::VectorXd s0 = identityPlasticStrain().replicate(next.rest.T.rows(), 1);
     next.result = fitPlasticStrains(next.rest, next.rest.V, s0, next.markers, again, progress);
     const double before = last.result.icpErrors.mean(), after = next.result.icpErrors.mean();

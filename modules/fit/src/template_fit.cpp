@@ -159,7 +159,9 @@ std::vector<FitRound> fitRounds(const TemplateFitInputs& in, const TemplateFitOp
   const Remesh remesh = [&](const TriMesh& boundary) {
     return meshing::closedSurfaceTets(boundary, o.tets, source).tets;
   };
-  return refit(std::move(first), o.solver, o.refit, remesh, progress);
+  RefitOptions within = o.refit;
+  if (o.tets.faces <= 0) within.maxTets = 2 * o.tets.targetTets;  // the budget, when the target sets it
+  return refit(std::move(first), o.solver, within, remesh, progress);
 }
 
 // ---- Measures ----

@@ -53,6 +53,7 @@ OrganFit fitOrganToLabel(const TriMesh& templateSurface, const LabelMap& labels,
   fit::FitRound first{templ, markers, fit::fitPlasticStrains(templ, x0, s0, markers, fitOptions, progress)};
   fit::RefitOptions refit;
   refit.refits = options.refits;
+  refit.maxTets = 2 * options.targetTets;
   const std::vector<fit::FitRound> rounds = fit::refit(
       std::move(first), fitOptions, refit,
       [&](const TriMesh& fitted) { return meshing::tetrahedralizeWithinBudget(fitted, tets, name + " refit").tets; },

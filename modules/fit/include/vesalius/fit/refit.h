@@ -26,6 +26,11 @@ namespace vesalius::fit {
 struct RefitOptions {
   int refits = 0;         // most refits after the first fit
   int icpIterations = 3;  // ICP iterations of each refit: the first few gain most, before tets are crushed
+  // A remeshed rest shape of more tets than this ends the refits (0: no bound). A fit can fold its surface
+  // onto itself (a kidney the field of view cuts to its top 33 mm, pulled into a sheet at the cut), and
+  // the closed, coarsened fold can keep far more triangles than the budget allows: 211,406 tets for a
+  // target of 5,000, on which a refit ran for more than ten minutes.
+  long maxTets = 0;
 };
 
 // One fit: its rest tet mesh (V: rest positions, in template space for the first round and in the scan's
@@ -51,8 +56,9 @@ FitMarkers carriedMarkers(const FitMarkers& markers, const TetMesh& rest, const 
 TriMesh carriedSurface(const TriMesh& surface, const std::vector<FitRound>& rounds);
 
 // first: the first round (fitPlasticStrains on the template). Runs up to options.refits refits, each only
-// while the last round left a marker farther than fitOptions.maxIcpError, and keeps a refit only if it
-// lowered the mean ICP error by at least fitOptions.minIcpGain of it (the last kept round is the result).
+// while the last round left a marker farther than fitOptions.maxIcpError and its remeshed rest shape has at
+// most options.maxTets tets, and keeps a refit only if it lowered the mean ICP error by at least
+// fitOptions.minIcpGain of it (the last kept round is the result).
 // Returns the rounds kept, the first one first.
 std::vector<FitRound> refit(FitRound first, const FitOptions& fitOptions, const RefitOptions& options,
                             const Remesh& remesh, Progress* progress = nullptr);
