@@ -12,6 +12,8 @@
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
+#include "vesalius/io/dicom_rtstruct.h"
+#include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/pose_quality.h"
@@ -89,6 +91,12 @@ void runPose(const PoseOptions& o, CommandRun& run) {
   if (!o.labels.empty()) volumes.labels = readLabelsOption(o.labels, "", o.grid, run.report);
   volumes.scanName = fs::path(o.volume).filename().string();
   volumes.labelsName = fs::path(o.labels).filename().string();
+  // An RT Structure Set found by its content (a PACS export named RS000001 or x.dcm) is written back under
+  // a name that says what it is, which writeLabelMap goes by.
+  if (!o.grid.empty() && !io::isDicomRtStructPath(volumes.labelsName)) {
+    const fs::path name(volumes.labelsName);
+    volumes.labelsName = (io::isDicomSegPath(name) ? name.stem().string() : volumes.labelsName) + ".rtstruct.dcm";
+  }
   const posing::RigPoser session = [&] {
     auto timer = run.report.time("embed");
     return readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);

@@ -468,6 +468,16 @@ TEST(CliDicomSeg, PoseReadsAnRtStructOntoTheGrid) {
   const LabelMap posedNifti = io::readLabelMap(fromNifti + "/pose.nii.gz");
   const LabelMap posedRt = io::readDicomRtStruct(fromRt + "/pose.rtstruct.dcm", posedNifti.labels.geometry);
   EXPECT_EQ(compareLabels(posedRt, posedNifti, {1, 2}, "posed pose.rtstruct.dcm"), 0u);
+  // Found by its content under a PACS name: written back under that name as an RT Structure Set.
+  const std::string pacs = freshFolder("pose-pacs") + "/RS000001", fromPacs = freshFolder("pose-rt-pacs");
+  fs::create_directories(fs::path(pacs).parent_path());
+  fs::copy_file(rt, pacs);
+  args = pose;
+  args.insert(args.end(), {"--labels", pacs, "--grid", nifti, "--out", fromPacs});
+  r = runVesalius(args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const LabelMap posedPacs = io::readDicomRtStruct(fromPacs + "/RS000001.rtstruct.dcm", posedNifti.labels.geometry);
+  EXPECT_EQ(compareLabels(posedPacs, posedNifti, {1, 2}, "posed RS000001.rtstruct.dcm"), 0u);
   // Without --grid, refused before the rig is embedded.
   args = pose;
   args.insert(args.end(), {"--labels", rt, "--out", freshFolder("pose-no-grid")});

@@ -236,23 +236,20 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
   LabelRegionOptions regions;
   regions.body = body;
   regions.solidBody = solidBody;
-  if (!solidBody) {
-    regions.largestBodyPartOnly = true;
-    regions.closeOverBudget = true;
-    budgetSurfaces(regions, o.targetTets);
-    // The skin is carried by the body's tets: with an eighth of the target on the body (2,500 faces of a
-    // MakeHuman body at 20,000 tets) the demo's model lost 1.3 % of its skin's volume at frame 400 of the
-    // CMU walk, 0.8 % with a quarter.
-    regions.bodySurface.targetFaces = int(std::max<long>(2000, o.targetTets / 4));
-    return labelRegionSurfaces(box, ids, regions, source, &progress);
-  }
-  regions.largestPartOnly = true;
+  regions.largestPartOnly = solidBody;
+  regions.largestBodyPartOnly = !solidBody;
+  regions.closeOverBudget = !solidBody;
   // A coarse body surface can cut a bone a voxel below it (the test CT's body at 3,562 faces crossed
-  // hip_right at 10 triangle pairs); finer budgets then, and TetGen names the crossing if they stay.
+  // hip_right at 10 triangle pairs; an MRI's whole model at 2,000 tets crossed its torso bones at 40):
+  // finer budgets then, and TetGen names the crossing if they stay.
   std::vector<meshing::RegionSurface> surfaces;
   long budget = o.targetTets;
   for (int attempt = 0; attempt < 4; ++attempt, budget = budget * 3 / 2) {
     budgetSurfaces(regions, budget);
+    // The skin is carried by the body's tets: with an eighth of the target on the body (2,500 faces of a
+    // MakeHuman body at 20,000 tets) the demo's model lost 1.3 % of its skin's volume at frame 400 of the
+    // CMU walk, 0.8 % with a quarter.
+    if (!solidBody) regions.bodySurface.targetFaces = int(std::max<long>(2000, budget / 4));
     surfaces = labelRegionSurfaces(box, ids, regions, source, &progress);
     if (!meshing::surfacesCross(surfaces)) break;
   }
