@@ -391,8 +391,10 @@ std::map<std::string, std::string> nrrdFields(const std::string& path, std::uint
   while (std::getline(in, line) && ++lines < 4096) {
     headerBytes += line.size() + 1;
     // NrrdIO copies a line it cannot parse into a fixed buffer, NUL bytes and all: a long one smashes its
-    // stack. Key/value pairs (`key:=value`, Slicer's long segmentation parameters) are stored, not parsed.
-    if (line.size() > 512 && line[0] != '#' && line.find(":=") == std::string::npos)
+    // stack. Key/value pairs (`key:=value`, Slicer's long segmentation parameters) are stored, not parsed;
+    // NrrdIO takes a line for one only where its ":=" comes before any ": " (else it is a field line).
+    const std::size_t keyValue = line.find(":="), field = line.find(": ");
+    if (line.size() > 512 && line[0] != '#' && (keyValue == std::string::npos || field < keyValue))
       throw BadInput(path, "NRRD header line " + std::to_string(lines) + " holds " + std::to_string(line.size()) +
                                " characters (a field line holds at most 512)");
     if (const std::size_t nul = line.find('\0'); nul != std::string::npos) line.resize(nul);  // NrrdIO reads C strings
