@@ -29,7 +29,7 @@ struct RefitOptions {
   // A remeshed rest shape of more tets than this ends the refits (0: no bound). A fit can fold its surface
   // onto itself (a kidney the field of view cuts to its top 33 mm, pulled into a sheet at the cut), and
   // the closed, coarsened fold can keep far more triangles than the budget allows: 211,406 tets for a
-  // target of 5,000, on which a refit ran for more than ten minutes.
+  // target of 5,000, on which a refit takes more than ten minutes.
   long maxTets = 0;
 };
 
