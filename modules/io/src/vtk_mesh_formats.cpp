@@ -175,11 +175,9 @@ void checkXmlDeclaredCounts(const std::string& path) {
   }
 }
 
+// Update() on a reader whose file or input string is set; throws BadInput naming `path`.
 template <class Reader>
-void readChecked(Reader* reader, const std::string& path) {
-  checkReadable(path);
-  if constexpr (std::is_base_of_v<vtkXMLReader, Reader>) checkXmlDeclaredCounts(path);
-  reader->SetFileName(path.c_str());
+void updateChecked(Reader* reader, const std::string& path) {
   try {
     runChecked(reader, path, [reader] {
       reader->Update();
@@ -188,6 +186,14 @@ void readChecked(Reader* reader, const std::string& path) {
   } catch (const std::bad_alloc&) {
     throw BadInput(path, "the sizes it declares do not fit in memory");
   }
+}
+
+template <class Reader>
+void readChecked(Reader* reader, const std::string& path) {
+  checkReadable(path);
+  if constexpr (std::is_base_of_v<vtkXMLReader, Reader>) checkXmlDeclaredCounts(path);
+  reader->SetFileName(path.c_str());
+  updateChecked(reader, path);
 }
 
 // Every VTK format starts with a header, so an empty file is a failed write that VTK did not report
@@ -491,8 +497,8 @@ void checkPlyStructure(const std::string& path) {
 // legacy POLYDATA or UNSTRUCTURED_GRID file (header, FIELD, POINTS, the cell lists VERTICES, LINES,
 // POLYGONS, TRIANGLE_STRIPS or CELLS, in the layout of files before version 5 and in the
 // OFFSETS/CONNECTIVITY one of 5.x, and CELL_TYPES) is walked first, word by word as vtkDataReader reads
-// it. What follows the first POINT_DATA or CELL_DATA is left to VTK, which checks those counts against the
-// points and cells it has read.
+// it, and so are its POINT_DATA and CELL_DATA attributes, whose arrays VTK also allocates from their
+// declared sizes (a SCALARS line may declare billions of components) before reading a value.
 struct VtkValueType {
   int bytes = 0;
   bool isFloat = false, isSigned = false;
@@ -568,12 +574,26 @@ class LegacyVtkWalk {
         gridCells();
       else if (grid_ && startsWith(keyword, "cell_types"))
         cellTypes();
-      else if (startsWith(keyword, "cell_data") || startsWith(keyword, "point_data"))
+      else if (startsWith(keyword, "cell_data") || startsWith(keyword, "point_data")) {
+        attributes();
         break;
+      }
       else
         fail(wordAt_, "unknown keyword '" + shown(word_) + "'");
     }
     if (grid_) checkTetrahedra();
+  }
+
+  // After run(): the bytes without the METADATA blocks, or "" when there are none.
+  std::string metadataRemoved() const {
+    if (metadata_.empty()) return {};
+    std::string kept;
+    std::size_t from = 0;
+    for (const auto& [begin, end] : metadata_) {
+      kept.append(bytes_, from, begin - from);
+      from = end;
+    }
+    return kept.append(bytes_, from, std::string::npos);
   }
 
  private:
@@ -704,24 +724,31 @@ class LegacyVtkWalk {
   }
 
   // An array as vtkDataReader::ReadArray reads it: values, then blank lines and an optional METADATA block
-  // that ends at an empty line.
+  // that ends at a line vtkDataReader::ReadLine takes as empty (nothing before a NUL byte but a '\r').
+  // The block's extent is kept for metadataRemoved(): what VTK makes of its COMPONENT_NAMES and
+  // INFORMATION lines depends on the keys it knows and may read past the empty line.
   void array(const VtkValueType& type, long long count, const std::string& what, std::size_t sectionAt,
              const OnInteger* onInteger) {
     values(type, count, what, sectionAt, onInteger);
     for (;;) {
       std::size_t p = at_;
       while (p < bytes_.size() && (bytes_[p] == ' ' || bytes_[p] == '\r')) ++p;
+      // vtkDataReader looks at 256 bytes at a time and loops for ever on a window of only these two.
+      if (p - at_ >= 256) fail(at_, "256 or more spaces after the " + what);
       if (p >= bytes_.size() || bytes_[p] != '\n') break;
       at_ = p + 1;
     }
     if (lowerCase(std::string_view(bytes_).substr(at_, 8)) != "metadata") return;
+    const std::size_t blockAt = at_;
     for (bool first = true; at_ < bytes_.size(); first = false) {
       const std::size_t end = std::min(bytes_.find('\n', at_), bytes_.size());
       std::string_view line = std::string_view(bytes_).substr(at_, end - at_);
       at_ = std::min(end + 1, bytes_.size());
+      line = line.substr(0, line.find('\0'));
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       if (!first && line.empty()) break;
     }
+    metadata_.emplace_back(blockAt, at_);
   }
 
   void points() {
@@ -749,6 +776,7 @@ class LegacyVtkWalk {
       const long long offsets = integer("number of offsets", std::numeric_limits<long long>::min(), most);
       const long long connectivity = integer("connectivity size", std::numeric_limits<long long>::min(), most);
       if (offsets < 1) return;  // vtkDataReader reads no more of the section
+      cellCount_ += offsets - 1;
       if (connectivity < 0) fail(sectionAt, section + " declares a negative connectivity size");
       if (lowerCase(word("OFFSETS")) != "offsets") fail(wordAt_, "expected OFFSETS, found '" + shown(word_) + "'");
       std::vector<long long> starts;  // of each cell in the connectivity, then its size
@@ -797,6 +825,7 @@ class LegacyVtkWalk {
     if (cells != declared)
       fail(sectionAt, section + " declares " + std::to_string(declared) + " cells, but its " + std::to_string(size) +
                           " values hold " + std::to_string(cells));
+    cellCount_ += cells;
   }
 
   void gridCells() {
@@ -845,12 +874,93 @@ class LegacyVtkWalk {
       const long long components = integer("number of components", 0, std::numeric_limits<int>::max());
       const long long tuples = integer("number of tuples", 0, static_cast<long long>(left()));
       const VtkValueType type = valueType("a FIELD array");
-      if (components > 0 && tuples > static_cast<long long>(left()) / components)
-        fail(arrayAt, "FIELD array '" + shown(name) + "' declares " + std::to_string(components) + " x " +
-                          std::to_string(tuples) + " values, more than the file can hold");
-      const OnInteger any = [](long long, std::size_t) {};
-      array(type, components * tuples, "values of FIELD array '" + shown(name) + "'", arrayAt,
-            type.isFloat ? nullptr : &any);
+      sizedArray(type, tuples, components, "FIELD array '" + shown(name) + "'", arrayAt);
+    }
+  }
+
+  // `tuples` x `components` values of a FIELD or attribute array, refused before VTK allocates them when
+  // the rest of the file cannot hold that many.
+  void sizedArray(const VtkValueType& type, long long tuples, long long components, const std::string& what,
+                  std::size_t at) {
+    if (components > 0 && tuples > static_cast<long long>(left()) / components)
+      fail(at, what + " declares " + std::to_string(components) + " x " + std::to_string(tuples) +
+                   " values, more than the file can hold");
+    const OnInteger any = [](long long, std::size_t) {};
+    array(type, components * tuples, "values of " + what, at, type.isFloat ? nullptr : &any);
+  }
+
+  // The number after a POINT_DATA or CELL_DATA keyword (the current word), which must be the number of
+  // points or cells: the readers check only the first such count, and end without freeing what they read.
+  long long attributeTuples() {
+    const bool points = startsWith(lowerCase(word_), "point_data");
+    const std::size_t at = wordAt_;
+    const long long count = points ? points_ : cellCount_;
+    const long long declared = integer("number of tuples", 0, std::numeric_limits<long long>::max());
+    if (declared != count)
+      fail(at, std::string(points ? "POINT_DATA" : "CELL_DATA") + " declares " + std::to_string(declared) +
+                   (points ? " points" : " cells") + ", the file has " + std::to_string(std::max(count, 0LL)));
+    return declared;
+  }
+
+  // The attributes from a POINT_DATA or CELL_DATA keyword to the end of the file, keyword by keyword in the
+  // order vtkDataReader::ReadPointData and ReadCellData try them; each array holds a value or tuple per
+  // point or cell.
+  void attributes() {
+    const long long mostComponents = std::numeric_limits<int>::max();
+    long long tuples = attributeTuples();
+    for (;;) {
+      const std::string keyword = lowerCase(word(nullptr));
+      if (keyword.empty()) return;
+      const std::size_t at = wordAt_;
+      const auto named = [&](const char* section) {
+        return std::string(section) + " '" + shown(word((std::string("the ") + section + " name").c_str())) + "'";
+      };
+      if (startsWith(keyword, "scalars")) {
+        const std::string what = named("SCALARS");
+        const VtkValueType type = valueType("SCALARS");
+        long long components = 1;
+        if (lowerCase(word("LOOKUP_TABLE")) != "lookup_table") {
+          components = parsed("number of SCALARS components", 1, mostComponents);
+          if (lowerCase(word("LOOKUP_TABLE")) != "lookup_table")
+            fail(wordAt_, what + ": expected LOOKUP_TABLE, found '" + shown(word_) + "'");
+        }
+        word("the lookup table name");
+        sizedArray(type, tuples, components, what, at);
+      } else if (startsWith(keyword, "vectors") || startsWith(keyword, "normals") ||
+                 startsWith(keyword, "tensors")) {
+        const long long components = startsWith(keyword, "tensors6") ? 6 : startsWith(keyword, "tensors") ? 9 : 3;
+        std::string section = keyword.substr(0, startsWith(keyword, "tensors6") ? 8 : 7);
+        std::transform(section.begin(), section.end(), section.begin(), [](unsigned char c) { return std::toupper(c); });
+        const std::string what = named(section.c_str());
+        sizedArray(valueType(section.c_str()), tuples, components, what, at);
+      } else if (startsWith(keyword, "texture_coordinates")) {
+        const std::string what = named("TEXTURE_COORDINATES");
+        const long long dimension = integer("texture coordinate dimension", 1, 3);
+        sizedArray(valueType("TEXTURE_COORDINATES"), tuples, dimension, what, at);
+      } else if (startsWith(keyword, "global_ids") || startsWith(keyword, "pedigree_ids") ||
+                 startsWith(keyword, "edge_flags")) {
+        const std::string what = named("ids or flags");
+        sizedArray(valueType("ids or flags"), tuples, 1, what, at);
+      } else if (startsWith(keyword, "color_scalars")) {
+        const std::string what = named("COLOR_SCALARS");
+        const long long components = integer("number of COLOR_SCALARS components", 1, mostComponents);
+        // Bytes in a binary file, values in [0, 1] in an ASCII one.
+        sizedArray(binary_ ? VtkValueType{1, false, false} : VtkValueType{4, true, true}, tuples, components, what,
+                   at);
+      } else if (startsWith(keyword, "lookup_table")) {
+        const std::string what = named("LOOKUP_TABLE");
+        const long long colours = integer("number of LOOKUP_TABLE colours", 0, mostComponents);
+        if (colours > static_cast<long long>(left()) / 4)
+          fail(at, what + " declares " + std::to_string(colours) + " colours, more than the file can hold");
+        values(binary_ ? VtkValueType{1, false, false} : VtkValueType{4, true, true}, 4 * colours,
+               "colours of " + what, at, nullptr, true);
+      } else if (startsWith(keyword, "field")) {
+        field();
+      } else if (startsWith(keyword, "cell_data") || startsWith(keyword, "point_data")) {
+        tuples = attributeTuples();
+      } else {
+        fail(at, "unknown attribute '" + shown(word_) + "'");
+      }
     }
   }
 
@@ -862,15 +972,21 @@ class LegacyVtkWalk {
   const bool grid_;
   int major_ = 0;
   long long points_ = -1;  // not declared yet
+  long long cellCount_ = 0;  // in all cell lists so far
+  std::vector<std::pair<std::size_t, std::size_t>> metadata_;  // [begin, end) of each METADATA block
   // Unstructured grids: where CELLS and CELL_TYPES begin (npos: not met), each cell's size, the type count.
   std::size_t cellsAt_ = std::string::npos, typesAt_ = std::string::npos;
   std::vector<long long> cellSizes_;
   long long types_ = 0;
 };
 
-void checkLegacyVtkStructure(const std::string& path, bool unstructuredGrid) {
+// The file's bytes without its METADATA blocks if it has any (the array metadata of component names and
+// information keys, which nothing here reads), else an empty string.
+std::string checkLegacyVtkStructure(const std::string& path, bool unstructuredGrid) {
   const std::string bytes = readBinaryFile(path);
-  LegacyVtkWalk(bytes, path, unstructuredGrid).run();
+  LegacyVtkWalk walk(bytes, path, unstructuredGrid);
+  walk.run();
+  return walk.metadataRemoved();
 }
 
 bool isIntegral(int type) {
@@ -1140,7 +1256,9 @@ SpaceTag commentTag(vtkStringArray* comments) {
 }
 
 template <class Reader>
-void readLegacy(Reader* reader, const std::string& path) {
+void readLegacy(Reader* reader, const std::string& path, bool unstructuredGrid) {
+  checkReadable(path);
+  const std::string withoutMetadata = checkLegacyVtkStructure(path, unstructuredGrid);
   reader->ReadAllScalarsOn();
   reader->ReadAllVectorsOn();
   reader->ReadAllNormalsOn();
@@ -1148,7 +1266,15 @@ void readLegacy(Reader* reader, const std::string& path) {
   reader->ReadAllColorScalarsOn();
   reader->ReadAllTCoordsOn();
   reader->ReadAllFieldsOn();
-  readChecked(reader, path);
+  if (withoutMetadata.empty()) {
+    reader->SetFileName(path.c_str());
+  } else {
+    if (withoutMetadata.size() > std::size_t(std::numeric_limits<int>::max()))
+      throw BadInput(path, "a legacy VTK file of 2 GB or more with METADATA blocks is not supported");
+    reader->ReadFromInputStringOn();
+    reader->SetBinaryInputString(withoutMetadata.data(), int(withoutMetadata.size()));
+  }
+  updateChecked(reader, path);
 }
 
 template <class Writer>
@@ -1172,10 +1298,8 @@ TriMesh readVtkSurface(const std::string& path) {
     mesh = importPolyData(reader->GetOutput(), path);
     tag = commentTag(reader->GetComments());
   } else if (ext == ".vtk") {
-    checkReadable(path);
-    checkLegacyVtkStructure(path, false);
     vtkNew<vtkPolyDataReader> reader;
-    readLegacy(reader.Get(), path);
+    readLegacy(reader.Get(), path, false);
     mesh = importPolyData(reader->GetOutput(), path);
     tag = findSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
   } else if (ext == ".vtp") {
@@ -1201,10 +1325,8 @@ TetMesh readVtkTetMesh(const std::string& path) {
     mesh = importUnstructuredGrid(reader->GetOutput(), path);
     tag = fieldDataTag(reader->GetOutput());
   } else if (ext == ".vtk") {
-    checkReadable(path);
-    checkLegacyVtkStructure(path, true);
     vtkNew<vtkUnstructuredGridReader> reader;
-    readLegacy(reader.Get(), path);
+    readLegacy(reader.Get(), path, true);
     mesh = importUnstructuredGrid(reader->GetOutput(), path);
     tag = findSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
   } else {

@@ -41,7 +41,7 @@ const BadCase kCases[] = {
     {"mesh_face_out_of_range.obj", false, "line 5: vertex index 9 out of range (3 defined so far)"},
     {"mesh_mixed_uv.obj", false, "has texture coordinates but the face on line 7 has none"},
     {"mesh_strips.vtk", false, "triangle strips are not supported"},
-    {"mesh_short_point_data.vtk", false, "Possible mismatch of datasize with declaration"},
+    {"mesh_short_point_data.vtk", false, "the file ends after 2 of 3 values of SCALARS 's'"},
     {"mesh_image.vtk", false, "holds VTK structured_points"},
     {"mesh_truncated.vtp", false, "Error parsing XML in stream at line 15"},
     {"mesh_huge_components.vtp", false, "NumberOfComponents=\"11111111111111111113\" is not a component count"},
@@ -337,6 +337,100 @@ TEST(BadMeshFile, LegacyVtkTetrahedra) {
     writeFile(path, c.text);
     test::expectOneLineBadInput(path, c.expected, [&] { readTetMesh(path); });
   }
+}
+
+// Attributes after the geometry, as vtkDataReader reads them: POINT_DATA then CELL_DATA arrays read onto
+// the vertices and cells. Declared sizes the file cannot hold (a SCALARS line with billions of components,
+// colours, a lookup table) are refused before VTK allocates them; so are counts other than the points and
+// cells (VTK checks only the first), a texture dimension VTK does not read, an unknown attribute and the
+// run of spaces VTK would loop on. METADATA blocks are skipped. Polygons and tetrahedra, ASCII and binary.
+TEST(BadMeshFile, LegacyVtkAttributes) {
+  const std::string folder = std::string(VESALIUS_TEST_OUTPUT) + "/legacy-vtk-attributes";
+  fs::create_directories(folder);
+  for (const bool tets : {false, true})
+    for (const bool binary : {false, true}) {
+      LegacyPolygon polygon;
+      polygon.corners = 5;
+      polygon.binary = binary;
+      LegacyTets grid;
+      grid.binary = binary;
+      // Five points either way; the polygon is one cell, the grid two.
+      const std::string geometry = tets ? legacyTets(grid) : legacyPolygon(polygon);
+      const int points = 5, cells = tets ? 2 : 1;
+      const auto ints = [&](int count, int first) {
+        std::string out;
+        for (int i = 0; i < count; ++i)
+          out += binary ? bigEndian(static_cast<std::uint32_t>(first + i), 4) : std::to_string(first + i) + " ";
+        return out + "\n";
+      };
+      const auto floats = [&](int count, float first) {
+        std::string out;
+        for (int i = 0; i < count; ++i) out += binary ? floatBigEndian(first + i) : std::to_string(first + i) + " ";
+        return out + "\n";
+      };
+      // METADATA blocks as vtkDataWriter writes them: information keys after the points, component names.
+      const std::string information =
+          "METADATA\nINFORMATION 2\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 17.3\n"
+          "NAME L2_NORM_FINITE_RANGE LOCATION vtkDataArray\nDATA 2 0 17.3\n\n";
+      const std::size_t cellsAt = geometry.find(tets ? "CELLS" : "POLYGONS");
+      const std::string good = "POINT_DATA 5\nSCALARS bone int 1\nLOOKUP_TABLE default\n" + ints(points, 7) +
+                               "VECTORS shift float\n" + floats(3 * points, 0.5f) +
+                               "SCALARS pair float 2\nLOOKUP_TABLE default\n" + floats(2 * points, 1.0f) +
+                               "METADATA\nCOMPONENT_NAMES\nfirst\nsecond\n\nCELL_DATA " + std::to_string(cells) +
+                               "\nSCALARS weight float\nLOOKUP_TABLE default\n" + floats(cells, 2.5f);
+      const std::string name = folder + (tets ? "/tets" : "/polygon") + (binary ? "_binary" : "_ascii");
+      writeFile(name + ".vtk", geometry.substr(0, cellsAt) + information + geometry.substr(cellsAt) + good);
+      const auto read = [&](const std::string& path) {
+        if (tets) {
+          const TetMesh mesh = readTetMesh(path);
+          return std::make_pair(mesh.vertexAttributes, mesh.tetAttributes);
+        }
+        const TriMesh mesh = readTriMesh(path);
+        return std::make_pair(mesh.vertexAttributes, mesh.faceAttributes);
+      };
+      const auto [vertex, cell] = read(name + ".vtk");
+      ASSERT_TRUE(vertex.integer.count("bone")) << name;
+      for (int i = 0; i < points; ++i) EXPECT_EQ(vertex.integer.at("bone")(i), 7 + i) << name;
+      ASSERT_TRUE(vertex.real.count("shift")) << name;
+      EXPECT_EQ(vertex.real.at("shift").cols(), 3) << name;
+      EXPECT_DOUBLE_EQ(vertex.real.at("shift")(points - 1, 2), 0.5 + 3 * points - 1) << name;
+      ASSERT_TRUE(vertex.real.count("pair")) << name;
+      EXPECT_EQ(vertex.real.at("pair").cols(), 2) << name;
+      EXPECT_DOUBLE_EQ(vertex.real.at("pair")(points - 1, 1), 1.0 + 2 * points - 1) << name;
+      ASSERT_TRUE(cell.real.count("weight")) << name;
+      EXPECT_DOUBLE_EQ(cell.real.at("weight")(0, 0), 2.5) << name;
+      std::cout << name << ": bone, shift, pair and weight read past two METADATA blocks\n";
+
+      const struct {
+        std::string name, attributes, expected;
+      } bad[] = {
+          {"components", "POINT_DATA 5\nSCALARS bone int 444444444444441\nLOOKUP_TABLE default\n" + ints(points, 0),
+           "number of SCALARS components 444444444444441 is out of range"},
+          {"components_fit", "POINT_DATA 5\nSCALARS bone int 100000000\nLOOKUP_TABLE default\n" + ints(points, 0),
+           "SCALARS 'bone' declares 100000000 x 5 values, more than the file can hold"},
+          {"no_table", "POINT_DATA 5\nSCALARS bone int 1\n" + ints(points, 0), "expected LOOKUP_TABLE"},
+          {"colours", "POINT_DATA 5\nCOLOR_SCALARS rgb 2000000000\n" + floats(points, 0),
+           "COLOR_SCALARS 'rgb' declares 2000000000 x 5 values"},
+          {"table", "POINT_DATA 5\nLOOKUP_TABLE grey 2000000000\n" + floats(4, 0),
+           "LOOKUP_TABLE 'grey' declares 2000000000 colours"},
+          {"point_count", "POINT_DATA 4\nSCALARS bone int 1\nLOOKUP_TABLE default\n" + ints(4, 0),
+           "POINT_DATA declares 4 points, the file has 5"},
+          {"later_count", "POINT_DATA 5\nCELL_DATA 9000000000000\nSCALARS w float\nLOOKUP_TABLE default\n" +
+                              floats(cells, 0),
+           "CELL_DATA declares 9000000000000 cells, the file has " + std::to_string(cells)},
+          {"texture", "POINT_DATA 5\nTEXTURE_COORDINATES uv 4 float\n" + floats(4 * points, 0),
+           "texture coordinate dimension 4 is out of range [1, 3]"},
+          {"unknown", "POINT_DATA 5\nCURVATURE k float\n" + floats(points, 0), "unknown attribute 'CURVATURE'"},
+          // vtkDataReader would look for the end of these spaces for ever.
+          {"spaces", "POINT_DATA 5\nSCALARS bone int 1\nLOOKUP_TABLE default\n" + ints(points, 0) +
+                         std::string(300, ' ') + "\n",
+           "256 or more spaces after the values of SCALARS 'bone'"}};
+      for (const auto& c : bad) {
+        const std::string path = name + "_" + c.name + ".vtk";
+        writeFile(path, geometry + c.attributes);
+        test::expectOneLineBadInput(path, c.expected, [&] { read(path); });
+      }
+    }
 }
 
 // A PLY polygon whose last line lacks its newline is refused; with it, it reads, at each size.
