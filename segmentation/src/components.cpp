@@ -16,10 +16,11 @@ using MaskImage = itk::Image<std::uint8_t, 3>;
 using ComponentImage = itk::Image<std::uint32_t, 3>;
 
 // Components of `mask` numbered 1, 2, ... by decreasing size; those under minVoxels become 0.
-Grid<std::uint32_t> sortedComponents(const Mask& mask, std::int64_t minVoxels) {
+Grid<std::uint32_t> sortedComponents(const Mask& mask, std::int64_t minVoxels,
+                                     Connectivity connectivity = Connectivity::Full) {
   auto label = itk::ConnectedComponentImageFilter<MaskImage, ComponentImage>::New();
   label->SetInput(detail::toItk(mask));
-  label->SetFullyConnected(true);
+  label->SetFullyConnected(connectivity == Connectivity::Full);
   auto relabel = itk::RelabelComponentImageFilter<ComponentImage, ComponentImage>::New();
   relabel->SetInput(label->GetOutput());
   relabel->SetMinimumObjectSize(static_cast<itk::SizeValueType>(std::max<std::int64_t>(minVoxels, 0)));
@@ -46,7 +47,9 @@ Mask selectWhere(const Grid<std::uint32_t>& components, bool largestOnly) {
 
 }  // namespace
 
-Mask largestComponent(const Mask& mask) { return selectWhere(sortedComponents(mask, 0), true); }
+Mask largestComponent(const Mask& mask, Connectivity connectivity) {
+  return selectWhere(sortedComponents(mask, 0, connectivity), true);
+}
 
 Mask componentsTouching(const Mask& mask, const Mask& seeds) {
   if (seeds.values.size() != mask.values.size())

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 namespace vesalius::segmentation {
 namespace {
@@ -42,6 +43,31 @@ TEST(LabelOps, LargestComponentAndSmallComponents) {
   const Mask both = maskOr(big, small);
   EXPECT_EQ(countVoxels(largestComponent(both)), countVoxels(big));
   EXPECT_EQ(countVoxels(removeSmallComponents(both, countVoxels(small) + 1)), countVoxels(big));
+}
+
+// A ball with a finger tip of 2 x 2 x 2 voxels touching it: across a face, an edge or only a corner.
+// Full connectivity keeps the tip in each case; face connectivity only where a face joins it.
+TEST(LabelOps, LargestComponentByFaceOrFullConnectivity) {
+  const GridGeometry g = cube(24);
+  const Mask body = ball(g, {10, 10, 10}, 6);
+  // The ball's last voxel along +x is (16, 10, 10); each tip starts one step from it.
+  const struct {
+    const char* joint;
+    Eigen::Vector3i corner;
+    bool faceKeeps;
+  } tips[] = {{"a face", {17, 10, 10}, true}, {"an edge", {17, 11, 10}, false}, {"a corner", {17, 11, 11}, false}};
+  for (const auto& tip : tips) {
+    Mask both = body;
+    for (int d = 0; d < 8; ++d)
+      both.at(tip.corner.x() + d % 2, tip.corner.y() + d / 2 % 2, tip.corner.z() + d / 4) = 1;
+    ASSERT_EQ(countVoxels(both), countVoxels(body) + 8) << tip.joint;
+    const std::int64_t full = countVoxels(largestComponent(both, Connectivity::Full));
+    const std::int64_t face = countVoxels(largestComponent(both, Connectivity::Face));
+    std::cout << "tip joined at " << tip.joint << ": full keeps " << full << ", face " << face << " of "
+              << countVoxels(both) << " voxels\n";
+    EXPECT_EQ(full, countVoxels(both)) << tip.joint;
+    EXPECT_EQ(face, countVoxels(body) + (tip.faceKeeps ? 8 : 0)) << tip.joint;
+  }
 }
 
 TEST(LabelOps, FillHolesFillsACavityButNotTheOutside) {

@@ -10,7 +10,8 @@ namespace vesalius::rigging {
 segmentation::Mask skinInsideMask(const TriMesh& skin, const GridGeometry& grid, const std::string& source) {
   try {
     return segmentation::largestComponent(
-        segmentation::openMm(meshing::meshInsideMask(skin, grid), grid.spacing.maxCoeff()));
+        segmentation::openMm(meshing::meshInsideMask(skin, grid), grid.spacing.maxCoeff()),
+        segmentation::Connectivity::Face);
   } catch (const BadInput& e) {
     if (!e.file().empty()) throw;
     throw BadInput(source, "skin: " + e.problem());

@@ -45,39 +45,6 @@ Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, con
 
 namespace {
 
-// The largest 6-connected part of `mask`: parts touching it only at an edge or a corner (which
-// segmentation::largestComponent, 26-connected, keeps) would be separate surface shells of a voxel or two.
-segmentation::Mask largestFaceConnectedPart(const segmentation::Mask& mask) {
-  const Eigen::Vector3i& n = mask.geometry.size;
-  std::vector<int> part(mask.values.size(), -1);
-  std::vector<long> sizes;
-  std::vector<long> stack;
-  for (long seed = 0; seed < long(mask.values.size()); ++seed) {
-    if (!mask.values[seed] || part[seed] >= 0) continue;
-    const int id = int(sizes.size());
-    sizes.push_back(0);
-    part[seed] = id;
-    stack.push_back(seed);
-    while (!stack.empty()) {
-      const long v = stack.back();
-      stack.pop_back();
-      ++sizes[id];
-      const int i = int(v % n.x()), j = int(v / n.x() % n.y()), k = int(v / n.x() / n.y());
-      const int step[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-      for (const auto& d : step) {
-        const int a = i + d[0], b = j + d[1], c = k + d[2];
-        if (!mask.geometry.contains(a, b, c)) continue;
-        const long w = long(mask.geometry.linearIndex(a, b, c));
-        if (mask.values[w] && part[w] < 0) part[w] = id, stack.push_back(w);
-      }
-    }
-  }
-  const int largest = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
-  segmentation::Mask kept(mask.geometry, 0);
-  for (std::size_t v = 0; v < kept.values.size(); ++v) kept.values[v] = part[v] == largest;
-  return kept;
-}
-
 // Per label value, its voxels' faces towards another value or the grid's edge.
 std::vector<long> voxelFacesOfLabels(const Grid<Label>& labels) {
   std::vector<long> faces(65536, 0);
@@ -99,7 +66,7 @@ std::vector<long> voxelFacesOfLabels(const Grid<Label>& labels) {
 // Voxels of `id` outside its largest face-connected part set to 0.
 void keepLargestPart(Grid<Label>& labels, Label id) {
   const segmentation::Mask mask = segmentation::maskOf(labels, id);
-  const segmentation::Mask kept = largestFaceConnectedPart(mask);
+  const segmentation::Mask kept = segmentation::largestComponent(mask, segmentation::Connectivity::Face);
   for (std::size_t v = 0; v < labels.values.size(); ++v)
     if (mask.values[v] && !kept.values[v]) labels.values[v] = 0;
 }
@@ -159,7 +126,8 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     segmentation::Mask inside = segmentation::nonZeroMask(map.labels);
     if (options.solidBody) inside = segmentation::closeMm(inside, 3 * voxel);
     inside = segmentation::fillBodyHoles(inside);
-    if (options.solidBody || options.largestBodyPartOnly) inside = largestFaceConnectedPart(inside);
+    if (options.solidBody || options.largestBodyPartOnly)
+      inside = segmentation::largestComponent(inside, segmentation::Connectivity::Face);
     body = segmentation::labelMapOf(inside, {1, "body"});
     regions.push_back({meshing::labelSurface(*body, 1, options.bodySurface), options.body,
                        source + " body (all labels, holes filled)"});

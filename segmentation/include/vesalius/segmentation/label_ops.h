@@ -38,9 +38,13 @@ std::int64_t countVoxels(const Mask& mask);
 // Dice overlap 2|A∩B| / (|A|+|B|); 1 when both are empty.
 double diceCoefficient(const Mask& a, const Mask& b);
 
-// The largest 26-connected component (ITK ConnectedComponentImageFilter, fully connected, then
-// RelabelComponentImageFilter). Empty input gives an empty mask.
-Mask largestComponent(const Mask& mask);
+// Which voxels are neighbours: the 6 that share a face, or all 26 that share a face, an edge or a corner.
+enum class Connectivity { Face, Full };
+
+// The largest component (ITK ConnectedComponentImageFilter, then RelabelComponentImageFilter). Empty
+// input gives an empty mask. Face connectivity keeps what a surface of the mask bounds as one shell:
+// parts joined to it only at an edge or a corner would be separate shells of a voxel or two.
+Mask largestComponent(const Mask& mask, Connectivity connectivity = Connectivity::Full);
 // Drops 26-connected components with fewer than `minVoxels` voxels.
 Mask removeSmallComponents(const Mask& mask, std::int64_t minVoxels);
 

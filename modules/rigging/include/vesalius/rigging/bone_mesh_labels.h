@@ -2,9 +2,10 @@
 // body's skin and its bone meshes voxelized on one grid, for `rig --reference` (and the skin's inside for
 // `rig --skin`).
 // - The body is the voxels inside the skin (meshInsideMask, mesh_volume.h: the skin must be closed, as
-//   MakeHuman's and a label surface are), opened by one voxel and cut to its largest part: parts a voxel
-//   or two thin (finger tips, toes at coarse voxels) would otherwise give flat surface pieces TetGen
-//   cannot seed.
+//   MakeHuman's and a label surface are), opened by one voxel and cut to its largest face-connected part:
+//   parts a voxel or two thin (finger tips, toes at coarse voxels) would otherwise give flat surface
+//   pieces TetGen cannot seed, and parts joined to the body only at a voxel's edge or corner (a thin
+//   body's finger tips) separate shells whose vertices reach no bone.
 // - Each bone is the body's voxels where the generalized winding number of one of its meshes is at least
 //   1/2 (winding_mask.h), which holds on OpenSim's open, non-manifold and self-crossing meshes, where
 //   meshInsideMask would refuse or flood them. Bone voxels outside the body are dropped (the placed
