@@ -133,6 +133,21 @@ TEST(CliTransfer, TorsoReferenceFromTheLabelledCt) {
   EXPECT_EQ(skin.boundaryEdges, 0);
 }
 
+// A label map without a left/right pair (the tissue classes `segment` gives the 3-slice CT) has no sagittal
+// plane: refused in one line naming it, with nothing written.
+TEST(CliTransfer, TorsoReferenceWithoutALeftRightPairIsRefused) {
+  const std::string dir = freshDir("no-pairs");
+  const std::string ct = std::string(VESALIUS_TESTDATA) + "/dicom/ct-3slice-dcmqi/ct-3slice";
+  const std::string classes = dir + "/classes.nii.gz", out = dir + "/reference";
+  ASSERT_EQ(runVesalius({"segment", "--scan", ct, "--out", classes, "--progress", "none"}).exitCode, 0);
+  const CommandResult r =
+      runVesalius({"reference", "torso", "--scan", ct, "--labels", classes, "--out", out, "--progress", "none"});
+  std::cout << r.err;
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(r.err, "vesalius: " + classes + ": no left/right pair of labels to find the sagittal plane from\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliTransfer, TheSameBodyGivesTheSameAnatomy) {
   const std::string dir = freshDir("same");
   const std::string reference = buildReference(dir);

@@ -1,11 +1,14 @@
 #include "vesalius/patient/scan_anatomy.h"
 
+#include "labels_with_voxels.h"
+
 #include "vesalius/core/error.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <map>
 #include <regex>
+#include <set>
 
 namespace vesalius::patient {
 
@@ -29,23 +32,40 @@ void classifyTissue(ReferenceTissue& tissue) {
   }
 }
 
-Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const std::string& source) {
-  std::map<std::string, Eigen::Vector3d> centroid;
-  for (const ReferenceTissue& t : tissues) centroid[t.name] = t.mesh.V.colwise().mean().transpose();
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
-  int pairs = 0;
+namespace {
+
+const char* const kNoPairs = "no left/right pair of labels to find the sagittal plane from";
+
+// The pairs among `names` of a name holding "left" and the same name with "right" in its place.
+std::vector<std::pair<std::string, std::string>> leftRightPairs(const std::set<std::string>& names) {
+  std::vector<std::pair<std::string, std::string>> pairs;
   const std::regex left("(.*)left(.*)");
-  for (const auto& [name, c] : centroid) {
+  for (const std::string& name : names) {
     std::smatch m;
     if (!std::regex_match(name, m, left)) continue;
-    const auto partner = centroid.find(m[1].str() + "right" + m[2].str());
-    if (partner == centroid.end()) continue;
-    normal += (c - partner->second).normalized();
-    point += 0.5 * (c + partner->second);
-    ++pairs;
+    const std::string partner = m[1].str() + "right" + m[2].str();
+    if (names.count(partner)) pairs.emplace_back(name, partner);
   }
-  if (pairs == 0) throw BadInput(source, "no left/right pair of labels to find the sagittal plane from");
-  return {point / pairs, normal.normalized()};
+  return pairs;
+}
+
+}  // namespace
+
+Plane sagittalPlaneOfPairs(const std::vector<ReferenceTissue>& tissues, const std::string& source) {
+  std::map<std::string, Eigen::Vector3d> centroid;
+  std::set<std::string> names;
+  for (const ReferenceTissue& t : tissues) {
+    centroid[t.name] = t.mesh.V.colwise().mean().transpose();
+    names.insert(t.name);
+  }
+  const auto pairs = leftRightPairs(names);
+  if (pairs.empty()) throw BadInput(source, kNoPairs);
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
+  for (const auto& [left, right] : pairs) {
+    normal += (centroid[left] - centroid[right]).normalized();
+    point += 0.5 * (centroid[left] + centroid[right]);
+  }
+  return {point / double(pairs.size()), normal.normalized()};
 }
 
 std::vector<int> scanCutVertices(const TriMesh& skin, const Grid<std::uint8_t>& body) {
@@ -91,6 +111,12 @@ ReferenceAnatomy scanAnatomy(const Image& scan, const LabelMap& labels, const Sc
                              const std::string& scanSource, const std::string& labelsSource, Progress* progress) {
   if (labels.labels.geometry.size != scan.geometry.size)
     throw BadInput(labelsSource, "the label map's grid differs from the scan's (" + scanSource + ")");
+  // Refused before the surfaces are made, which takes minutes on a large map.
+  const LabelsWithVoxels withVoxels(labels);
+  std::set<std::string> present;
+  for (const LabelEntry& e : labels.table.entries)
+    if (withVoxels.has(e.id)) present.insert(e.name);
+  if (leftRightPairs(present).empty()) throw BadInput(labelsSource, kNoPairs);
   ReferenceAnatomy anatomy;
   if (progress) progress->begin("skin", "body mask and its surface");
   anatomy.skin = scanSkin(scan, options, scanSource, anatomy.skinCutVertices);

@@ -1,9 +1,9 @@
 // Decimation of a closed triangle surface to about a target face count: quadric error metrics
 // (Garland and Heckbert, SIGGRAPH 1997; vtkQuadricDecimation) with volume preservation, for the better
 // triangle shapes. Where that opens the surface (a mesh of many thin pieces, such as a CT's bone class), it
-// is tried again at targets 10 % … 100 % larger (where a collapse tears depends on the target), and only
-// then replaced by vtkDecimatePro with the topology kept, which stops short of the target where it cannot
-// reach it safely. Templates with fine surfaces need this before TetGen, which keeps every
+// is tried again at targets 10 % … 100 % larger (where a collapse tears depends on the target; the
+// smaller ones only where twice the target holds), and only then replaced by vtkDecimatePro with the
+// topology kept, which stops short of the target where it cannot reach it safely. Templates with fine surfaces need this before TetGen, which keeps every
 // input triangle (a 30k-triangle muscle gives 150k tets whatever the target).
 #pragma once
 
