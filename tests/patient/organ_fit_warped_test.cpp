@@ -9,6 +9,7 @@
 #include "test_data.h"
 #include "warped_patient.h"
 
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/triangle_tree.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
@@ -16,6 +17,7 @@
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/surface_samples.h"
 #include "vesalius/patient/organ_fit.h"
+#include "vesalius/segmentation/label_edit.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <gtest/gtest.h>
@@ -192,6 +194,49 @@ TEST_P(OrganFitWarped, LibraryOrgansFitTheWarpedLabels) {
               << " s\n";
     EXPECT_GE(dice, 0.90);
     EXPECT_LT(distance, voxel);
+  }
+}
+
+// Each kidney of the warped patient with the scan cut through its middle (the grid kept from the kidney's
+// centroid slice up), as a scan's field of view cuts an organ: the fit to the upper half is scored inside
+// the cut scan as above, and the whole fitted kidney against the whole warped label, which the fit never
+// saw: its volume and its Dice with the label on the uncut grid.
+TEST_P(OrganFitWarped, AKidneyTheScanCutsKeepsItsSize) {
+  const TestPatient& patient = testPatients()[std::size_t(GetParam())];
+  const WarpedPatient warped =
+      warpPatient(io::readScan(kCtScan), io::readLabelMap(kCtLabels, kCtLabelTable), patient.warps);
+  const GridGeometry& g = warped.labels.labels.geometry;
+  const double voxelVolume = g.spacing.prod();
+  patient::OrganFitOptions options;
+  options.markers = 200;
+  options.targetTets = 2000;
+  options.refits = 1;
+  for (const char* organ : {"kidney_left", "kidney_right"}) {
+    SCOPED_TRACE(patient.name + " " + organ);
+    const Label id = warped.labels.table.resolve(organ);
+    const segmentation::Mask truth = segmentation::maskOf(warped.labels.labels, id);
+    const segmentation::VoxelBox bounds = segmentation::maskBounds(truth);
+    segmentation::VoxelBox box;
+    box.hi = g.size;
+    box.lo.z() = (bounds.lo.z() + bounds.hi.z()) / 2;
+    const LabelMap cut = segmentation::cropLabelMap(warped.labels, box);
+    const TriMesh templ = io::readTriMesh(kTemplates + "/" + std::string(organ) + ".obj");
+    const patient::OrganFit fit = patient::fitOrganToLabel(templ, cut, id, options, "cut labels");
+
+    const double volume = enclosedVolume(fit.surface.V, fit.surface.F);
+    const double labelVolume = double(segmentation::countVoxels(truth)) * voxelVolume;
+    const double wholeDice = segmentation::diceCoefficient(meshing::meshInsideMask(fit.surface, g), truth);
+    const segmentation::Mask cutTruth = segmentation::maskOf(cut.labels, id);
+    const double cutDice =
+        segmentation::diceCoefficient(meshing::meshInsideMask(fit.surface, cut.labels.geometry), cutTruth);
+    std::cout << patient.name << " " << organ << " cut at slice " << box.lo.z() << " of " << bounds.lo.z() << " … "
+              << bounds.hi.z() - 1 << ": Dice " << cutDice << " inside the cut scan, " << wholeDice
+              << " with the whole label; volume " << volume / 1000 << " ml against the label's "
+              << labelVolume / 1000 << " ml (x" << volume / labelVolume << "), markers " << fit.errorBefore.mean()
+              << " -> " << fit.errorAfter.mean() << " mm\n";
+    EXPECT_GE(cutDice, 0.90);
+    EXPECT_NEAR(volume / labelVolume, 1.0, 0.2);
+    EXPECT_GE(wholeDice, 0.85);
   }
 }
 

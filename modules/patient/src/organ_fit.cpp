@@ -12,6 +12,8 @@
 #include "vesalius/meshing/surface_samples.h"
 #include "vesalius/meshing/tet_budget.h"
 
+#include <optional>
+
 namespace vesalius::patient {
 
 namespace {
@@ -41,8 +43,11 @@ OrganFit fitOrganToLabel(const TriMesh& templateSurface, const LabelMap& labels,
   meshing::TetrahedralizeOptions tets;
   tets.targetTets = options.targetTets;
   const TetMesh templ = meshing::tetrahedralizeWithinBudget(templateSurface, tets, name + " template").tets;
-  const fit::Placement placement =
-      fit::placeTemplate(tetBoundarySurface(templ.V, templ.T), MatrixX3d(0, 3), MatrixX3d(0, 3), markers.icp);
+  // A label the scan cuts lost its faces on the grid's edge to withinScan: placed by the two-sided ICP.
+  std::optional<fit::PlacementView> view;
+  if (boundary.F.rows() < surfaces.front().mesh.F.rows()) view = fit::PlacementView{labels.labels.geometry, boundary};
+  const fit::Placement placement = fit::placeTemplate(tetBoundarySurface(templ.V, templ.T), MatrixX3d(0, 3),
+                                                      MatrixX3d(0, 3), markers.icp, view ? &*view : nullptr);
   const MatrixX3d x0 = placement.transform.apply(templ.V);
   Eigen::VectorXd s0(6 * templ.T.rows());
   for (Eigen::Index t = 0; t < templ.T.rows(); ++t)
