@@ -66,14 +66,13 @@ Placement icpFrom(const TriMesh& surface, const TriangleTree& templateTree, cons
   Placement best{start, std::numeric_limits<double>::infinity(), 0};
   SimilarityTransform current = start;
   for (int it = 0; it < 1000; ++it) {
-    const MatrixX3d placed = current.apply(surface.V);
     const MatrixX3d back = ((icp.rowwise() - current.translation.transpose()) * current.rotation) / current.scale;
     std::vector<ClosestPoint> hits = templateTree.closest(back);
     for (ClosestPoint& h : hits) h.squaredDistance *= current.scale * current.scale;
     std::vector<Eigen::Index> inside;
-    if (view)
-      for (Eigen::Index v = 0; v < placed.rows(); ++v)
-        if (insideGrid(view->grid(), placed.row(v).transpose())) inside.push_back(v);
+    const MatrixX3d placed = view ? current.apply(surface.V) : MatrixX3d();
+    for (Eigen::Index v = 0; v < placed.rows(); ++v)
+      if (insideGrid(view->grid(), placed.row(v).transpose())) inside.push_back(v);
     std::vector<ClosestPoint> viewHits;
     if (!inside.empty()) {
       MatrixX3d queries(Eigen::Index(inside.size()), 3);
@@ -101,8 +100,9 @@ Placement icpFrom(const TriMesh& surface, const TriangleTree& templateTree, cons
       weights(row) = 1.0 / double(paired.size());
       viewSum += h.squaredDistance;
     }
-    const double rms = paired.empty() ? std::sqrt(markerSum / double(markers))
-                                      : std::sqrt(0.5 * (markerSum / double(markers) + viewSum / double(paired.size())));
+    const double markerMean = markerSum / double(markers);
+    const double rms =
+        std::sqrt(paired.empty() ? markerMean : 0.5 * (markerMean + viewSum / double(paired.size())));
     if (rms > best.rmsError * (1 - 1e-6)) break;
     best = {current, rms, it};
     current = fitSimilarity(material, target, weights, true);
