@@ -524,6 +524,12 @@ std::string lowerCase(std::string_view text) {
   return lower;
 }
 
+std::string upperCase(std::string_view text) {
+  std::string upper(text);
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+  return upper;
+}
+
 bool startsWith(const std::string& text, const char* prefix) { return text.rfind(prefix, 0) == 0; }
 
 // A word of the file as a message can show it: at most 40 characters, bytes that do not print as '?'.
@@ -768,8 +774,7 @@ class LegacyVtkWalk {
   // A cell list; the size of each cell goes to `sizes` if given.
   void cells(std::vector<long long>* sizes) {
     const std::size_t sectionAt = wordAt_;
-    std::string section(word_);
-    std::transform(section.begin(), section.end(), section.begin(), [](unsigned char c) { return std::toupper(c); });
+    const std::string section = upperCase(word_);
     if (points_ < 0) fail(sectionAt, section + " before POINTS");
     const long long most = std::numeric_limits<long long>::max();
     if (major_ >= 5) {
@@ -929,8 +934,7 @@ class LegacyVtkWalk {
       } else if (startsWith(keyword, "vectors") || startsWith(keyword, "normals") ||
                  startsWith(keyword, "tensors")) {
         const long long components = startsWith(keyword, "tensors6") ? 6 : startsWith(keyword, "tensors") ? 9 : 3;
-        std::string section = keyword.substr(0, startsWith(keyword, "tensors6") ? 8 : 7);
-        std::transform(section.begin(), section.end(), section.begin(), [](unsigned char c) { return std::toupper(c); });
+        const std::string section = upperCase(keyword.substr(0, startsWith(keyword, "tensors6") ? 8 : 7));
         const std::string what = named(section.c_str());
         sizedArray(valueType(section.c_str()), tuples, components, what, at);
       } else if (startsWith(keyword, "texture_coordinates")) {

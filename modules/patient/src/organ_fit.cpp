@@ -45,7 +45,8 @@ OrganFit fitOrganToLabel(const TriMesh& templateSurface, const LabelMap& labels,
   const TetMesh templ = meshing::tetrahedralizeWithinBudget(templateSurface, tets, name + " template").tets;
   // A label the scan cuts lost its faces on the grid's edge to withinScan: placed by the two-sided ICP.
   std::optional<fit::PlacementView> view;
-  if (boundary.F.rows() < surfaces.front().mesh.F.rows()) view = fit::PlacementView{labels.labels.geometry, boundary};
+  if (boundary.F.rows() < surfaces.front().mesh.F.rows())
+    view = fit::PlacementView{labels.labels.geometry, boundary};
   const fit::Placement placement = fit::placeTemplate(tetBoundarySurface(templ.V, templ.T), MatrixX3d(0, 3),
                                                       MatrixX3d(0, 3), markers.icp, view ? &*view : nullptr);
   const MatrixX3d x0 = placement.transform.apply(templ.V);

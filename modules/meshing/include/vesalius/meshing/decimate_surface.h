@@ -3,8 +3,9 @@
 // triangle shapes. Where that opens the surface (a mesh of many thin pieces, such as a CT's bone class), it
 // is tried again at targets 10 % … 100 % larger (where a collapse tears depends on the target; the
 // smaller ones only where twice the target holds), and only then replaced by vtkDecimatePro with the
-// topology kept, which stops short of the target where it cannot reach it safely. Templates with fine surfaces need this before TetGen, which keeps every
-// input triangle (a 30k-triangle muscle gives 150k tets whatever the target).
+// topology kept, which stops short of the target where it cannot reach it safely. Templates with fine
+// surfaces need this before TetGen, which keeps every input triangle (a 30k-triangle muscle gives 150k
+// tets whatever the target).
 #pragma once
 
 #include "vesalius/core/mesh.h"
