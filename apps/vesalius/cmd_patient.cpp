@@ -104,14 +104,14 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
       throw UsageError("patient: --frame " + std::to_string(o.frame) + " outside 0.." +
                        std::to_string(motion->frameCount() - 1) + " of " + o.motion);
   }
-  // Bad inputs refused at once, before the reference and the pipeline take their minutes.
-  patient::checkVirtualPatientInputs(scan, organs ? &*organs : nullptr, templates, pipeline, o.complete,
-                                     !o.pose.empty() || motion.has_value(), o.scan, o.organs);
-  std::optional<ReferenceAnatomy> reference;
   for (rigging::RigOptions* rig : {&pipeline.rigging.modelRig, &pipeline.rigging.rig}) {
     if (o.rigTets > 0) rig->targetTets = o.rigTets;
     if (o.rigVoxelSize > 0) rig->voxelSize = o.rigVoxelSize;
   }
+  // Bad inputs refused at once, before the reference and the pipeline take their minutes.
+  patient::checkVirtualPatientInputs(scan, organs ? &*organs : nullptr, templates, pipeline, o.complete,
+                                     !o.pose.empty() || motion.has_value(), o.scan, o.organs);
+  std::optional<ReferenceAnatomy> reference;
   // One bar over the command: the reference built, the pipeline's stages, the pose and the writing, by
   // their seconds on the shipped CT.
   StagePlan plan;
@@ -170,11 +170,14 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
               << r.folds.jacobian.nonPositiveCells << " folded cells, deepest interpenetration beyond the reference's "
               << r.interpenetration.worstExcessMm << " mm (report.json anatomy_rules)\n";
   }
-  if (p.rig)
+  if (p.rig) {
     std::cout << "  rig/: " << p.rig->rig.tets.T.rows() << " tets, joints " << p.rig->hipLeft << " and "
               << p.rig->hipRight << " turn the hips (vesalius pose --anatomy " << o.out << "/rig)\n";
-  else
+    warnIfOverTetTarget(long(p.rig->rig.tets.T.rows()),
+                        (o.complete ? o.pipeline.rigging.modelRig : o.pipeline.rigging.rig).targetTets, "--rig-tets");
+  } else {
     std::cout << "  no rig: " << p.noRigBecause << '\n';
+  }
   if (pose)
     std::cout << "  posed/: the model, scan and organ map posed by " << o.posing.method << "; "
               << pose->posed.quality.inverted << " inverted tets, skin volume change "

@@ -88,6 +88,7 @@ void finishRig(const RigOptions& o, rigging::BuiltRig& built, std::vector<std::p
   std::cout << o.out << ": " << rig.tets.V.rows() << " vertices, " << rig.tets.T.rows() << " tets, "
             << rig.boneJoint.size() << " of " << rig.skeleton.joints.size() << " joints with bone regions ("
             << boneVertices << " bone vertices), " << meshes.size() << " mesh(es)\n";
+  warnIfOverTetTarget(long(rig.tets.T.rows()), o.rig.targetTets, "--target-tets");
 }
 
 void reportParameters(const RigOptions& o, io::Report& report) {

@@ -368,4 +368,10 @@ Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::
   }
 }
 
+void warnIfOverTetTarget(long tets, long targetTets, const std::string& option) {
+  if (tets <= 2 * targetTets) return;
+  std::cerr << "vesalius: warning: the rig has " << tets << " tets, more than twice the " << targetTets << " of "
+            << option << ": its body and bone surfaces could not be coarsened to their budgets\n";
+}
+
 }  // namespace vesalius::cli

@@ -59,6 +59,10 @@ std::string errorMessage(const Error& error);
 // nothing.
 Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::string& labelsPath);
 
+// A warning line on stderr when a rig's tets are more than twice the target asked (`option` names it): its
+// surfaces stopped above their budgets (rigging/label_regions.h).
+void warnIfOverTetTarget(long tets, long targetTets, const std::string& option);
+
 // Each subcommand registers itself on the top-level app.
 void addInfoCommand(CLI::App& app);
 void addMarkersCommand(CLI::App& app);

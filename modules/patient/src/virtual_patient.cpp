@@ -7,6 +7,8 @@
 #include "vesalius/fat/fat_forest.h"
 #include "vesalius/fat/thickness_at_vertices.h"
 #include "vesalius/meshing/label_surface.h"
+#include "vesalius/posing/skeleton_from_bone_meshes.h"
+#include "vesalius/rigging/body_rig.h"
 #include "vesalius/segmentation/ct_tissues.h"
 #include "vesalius/segmentation/label_ops.h"
 #include "vesalius/segmentation/scan_modality.h"
@@ -85,6 +87,21 @@ std::string noRigBecause(const LabelMap* organs, const VirtualPatientOptions& op
   return missing.empty() ? "" : "the organ map has no voxels of" + missing;
 }
 
+// The bone labels the rig is meshed with: one per joint of the whole model's skeleton, or without the model
+// the organ map's hips, sacrum and femurs and its lumbar vertebrae upward from the sacrum (as
+// posing::skeletonFromBones chains them).
+std::size_t rigBones(const LabelMap* organs, const VirtualPatientOptions& options, bool withReference) {
+  if (withReference) return posing::meshSkeletonJoints().size();
+  const posing::SkeletonFromBonesOptions& bones = options.rigging.bones;
+  const LabelsWithVoxels present(*organs);
+  std::size_t count = 5;
+  for (const std::string& vertebra : bones.spine) {
+    if (!present.idOf(vertebra)) break;
+    ++count;
+  }
+  return count;
+}
+
 // The templates fitted: those whose organ has voxels in the organ map (the scan's anatomy has a tissue
 // for every label with voxels).
 std::vector<const OrganTemplate*> templatesToFit(const LabelMap* organs, const std::vector<OrganTemplate>& templates) {
@@ -146,9 +163,11 @@ void checkVirtualPatientInputs(const Image& scan, const LabelMap* organs, const 
     throw BadInput(scanSource, "MRI has no body: every voxel has the same value");
   }
   if (organs) checkOrganMap(scan, *organs, templates, scanSource, organsSource);
-  if (!posed) return;
-  if (const std::string why = noRigBecause(organs, options, withReference); !why.empty())
-    throw BadInput(organs ? organsSource : scanSource, "cannot pose the patient: " + why);
+  const std::string noRig = noRigBecause(organs, options, withReference);
+  if (noRig.empty())
+    rigging::checkRigTargetTets(withReference ? options.rigging.modelRig.targetTets : options.rigging.rig.targetTets,
+                                rigBones(organs, options, withReference), withReference);
+  if (posed && !noRig.empty()) throw BadInput(organs ? organsSource : scanSource, "cannot pose the patient: " + noRig);
 }
 
 VirtualPatient buildVirtualPatient(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,

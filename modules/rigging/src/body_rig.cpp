@@ -201,6 +201,10 @@ LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double
   return capped.size == g.size ? box : segmentation::resampleLabels(box, capped);
 }
 
+// The fewest triangles of a skin that carries the model (rig --reference): with fewer the posed skin loses
+// volume (below).
+constexpr int kMinSkinFaces = 2000;
+
 // The body (every labelled voxel, made solid) as the outer region and each bone label nested in it, as
 // `tetmesh --labels --body` makes them (label_regions.h); decimated, since TetGen keeps every boundary
 // triangle. Each bone is first grown by a voxel into the tissue around it (not into other bones): plates a
@@ -223,6 +227,7 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
                                                 const std::string& source, Progress& progress) {
   std::vector<Label> ids;
   for (const auto& labels : boneLabels) ids.insert(ids.end(), labels.begin(), labels.end());
+  checkRigTargetTets(o.targetTets, ids.size(), !solidBody);
   std::vector<bool> isBone(65536, false);
   for (Label l : ids) isBone[l] = true;
   const Grid<Label> rest = box.labels;
@@ -249,7 +254,7 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
     // The skin is carried by the body's tets: with an eighth of the target on the body (2,500 faces of a
     // MakeHuman body at 20,000 tets) the demo's model lost 1.3 % of its skin's volume at frame 400 of the
     // CMU walk, 0.8 % with a quarter.
-    if (!solidBody) regions.bodySurface.targetFaces = int(std::max<long>(2000, budget / 4));
+    if (!solidBody) regions.bodySurface.targetFaces = int(std::max<long>(kMinSkinFaces, budget / 4));
     surfaces = labelRegionSurfaces(box, ids, regions, source, &progress);
     if (!meshing::surfacesCross(surfaces)) break;
   }
@@ -337,6 +342,15 @@ posing::SkeletonFromBoneMeshesOptions withTorsoOf(const ReferenceAnatomy& refere
 }
 
 }  // namespace
+
+void checkRigTargetTets(long targetTets, std::size_t bones, bool reference) {
+  const long least = leastTargetTets(LabelRegionOptions{}, bones, reference ? kMinSkinFaces : kMinBodyFaces);
+  if (targetTets < least)
+    throw UsageError(std::to_string(targetTets) + " tets are too few for a rig of " + std::to_string(bones) +
+                     " bones: the body's and the bones' surfaces keep at least " + std::to_string(least / 2) +
+                     " triangles, which alone make more than twice as many tets; ask for at least " +
+                     std::to_string(least));
+}
 
 BuiltRig rigFromSkeleton(const TriMesh& skin, const Skeleton& skeleton, const RigOptions& options,
                          const std::string& source, const std::string& skeletonSource, Progress* progress) {

@@ -20,8 +20,12 @@ namespace vesalius::rigging {
 // (rig --reference at 8 mm with 6,100 faces: 6.5 tets per face).
 void budgetSurfaces(LabelRegionOptions& options, long targetTets) {
   const long faces = targetTets / 4;
-  options.bodySurface.targetFaces = int(std::max<long>(1000, faces / 2));
+  options.bodySurface.targetFaces = int(std::max<long>(kMinBodyFaces, faces / 2));
   options.labelFaces = std::max<long>(1, faces / 2);
+}
+
+long leastTargetTets(const LabelRegionOptions& options, std::size_t labels, long bodyFaces) {
+  return 2 * (bodyFaces + long(labels) * options.minLabelFaces);
 }
 
 Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, const std::vector<int>& rank) {

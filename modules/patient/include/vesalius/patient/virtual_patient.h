@@ -98,7 +98,8 @@ struct VirtualPatient {
 // options.surfaces.modality says which the scan is), an organ map on
 // another grid or with no label the model knows (naming `organsSource`), and when the patient is to be posed
 // (`posed`), a patient without a rig: without the reference (`withReference` false), one without an organ map
-// holding the pelvis and femurs (naming the organ map, or the scan without one). Throws BadInput.
+// holding the pelvis and femurs (naming the organ map, or the scan without one). Throws BadInput; and
+// UsageError for a rig's tet target below what its bones' surfaces allow (rigging::checkRigTargetTets).
 void checkVirtualPatientInputs(const Image& scan, const LabelMap* organs, const std::vector<OrganTemplate>& templates,
                                const VirtualPatientOptions& options, bool withReference, bool posed,
                                const std::string& scanSource, const std::string& organsSource);

@@ -71,6 +71,12 @@ BuiltRig rigFromBoneLabels(const LabelMap& labels, const posing::SkeletonFromBon
 BuiltRig rigFromReference(const ReferenceAnatomy& reference, const posing::SkeletonFromBoneMeshesOptions& bones,
                           const RigOptions& options, const std::string& source, Progress* progress = nullptr);
 
+// Throws UsageError, naming the least target, when targetTets is below the smallest that a rig of `bones`
+// bone labels keeps within twice (rigging::leastTargetTets): rigFromBoneLabels (reference false: the body
+// every labelled voxel) and rigFromReference (reference true: one label per joint with bone voxels, in a
+// skin that keeps more triangles) check it before their surfaces are made.
+void checkRigTargetTets(long targetTets, std::size_t bones, bool reference);
+
 // meshes: file names (AnatomyRig::meshes). Returns AnatomyRig::meshJoint for them: the joint of the bone
 // named by a file's stem in boneJoints, -1 for every other mesh.
 std::vector<int> meshJoints(const std::vector<std::string>& meshes, const std::map<std::string, int>& boneJoints);

@@ -51,10 +51,19 @@ struct LabelRegionOptions {
   bool largestPartOnly = false;
 };
 
+// The fewest triangles budgetSurfaces gives a body surface (a coarser one tears at 4 mm voxels).
+constexpr int kMinBodyFaces = 1000;
+
 // Face budgets for a mesh of about targetTets tets made with TetGen's keepSurface (-Y), where the
-// surfaces' own triangles set the count: a quarter of targetTets faces in all, half on the body, half on
-// the labels (labelFaces; see the .cpp for the measurements).
+// surfaces' own triangles set the count: a quarter of targetTets faces in all, half on the body (at least
+// kMinBodyFaces), half on the labels (labelFaces, at least minLabelFaces each; see the .cpp for the
+// measurements).
 void budgetSurfaces(LabelRegionOptions& options, long targetTets);
+
+// The smallest targetTets whose budget (a quarter of it in faces) holds the surfaces' floors within 2x:
+// twice the faces of a body of bodyFaces and `labels` labels of options.minLabelFaces each. Below it the
+// floors alone give more than twice the target.
+long leastTargetTets(const LabelRegionOptions& options, std::size_t labels, long bodyFaces = kMinBodyFaces);
 
 // The label voxels peeled as above: `labels` less its voxels next to a zero of `body` or the grid's edge
 // (with body null: neither) and, for a label of rank r, next to a label of larger rank. rank: per label
