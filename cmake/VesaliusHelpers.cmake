@@ -27,6 +27,19 @@ function(vesalius_module)
                                      ARCHIVE DESTINATION ${VESALIUS_LIB_INSTALL_DIR})
 endfunction()
 
+# Every test compiles with one precompiled header: GoogleTest, Eigen and the standard library parsed once
+# rather than in each of the tests' 200-odd translation units (a sixth of their compile time).
+function(vesalius_test_pch)
+  if(TARGET vesalius_test_pch)
+    return()
+  endif()
+  add_library(vesalius_test_pch OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
+  target_link_libraries(vesalius_test_pch PRIVATE GTest::gtest Eigen3::Eigen)
+  target_precompile_headers(vesalius_test_pch PRIVATE <gtest/gtest.h> <Eigen/Dense> <Eigen/Sparse>
+                            <algorithm> <filesystem> <fstream> <iostream> <map> <string> <vector>)
+  vesalius_target_flags(vesalius_test_pch)
+endfunction()
+
 # vesalius_test(NAME <t> SOURCES ... LIBS ... LABELS ... [LONG])
 # A GoogleTest executable whose tests ctest discovers, each carrying LABELS. Tests find the shipped
 # data through the VESALIUS_TESTDATA macro and may write under VESALIUS_TEST_OUTPUT. LONG: some of its
@@ -37,6 +50,8 @@ function(vesalius_test)
   cmake_parse_arguments(T "LONG" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  vesalius_test_pch()
+  target_precompile_headers(${T_NAME} REUSE_FROM vesalius_test_pch)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
   target_compile_definitions(${T_NAME} PRIVATE
     VESALIUS_TESTDATA="${PROJECT_SOURCE_DIR}/testdata"

@@ -249,7 +249,7 @@ void PickerController::save() {
 }
 
 void PickerController::quit() {
-  window_.interactor()->SetDone(true);  // TerminateApp() inside Start() crashes VTK 9.1 (BUILD-NOTES.md)
+  window_.interactor()->SetDone(true);  // TerminateApp() inside Start() crashes VTK 9.1 (docs/design.md)
 }
 
 void PickerController::updateCursorReadout(const MouseEvent& event) {

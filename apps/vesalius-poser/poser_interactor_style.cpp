@@ -32,7 +32,7 @@ void PoserInteractorStyle::handleKey(const std::string& key) {
   else if (key == "c") controller_->setMethod("cor");
   else if (key == "r") controller_->resetCamera();
   else if (key == "s") controller_->saveShown();
-  // TerminateApp() inside Start() crashes VTK 9.1 (BUILD-NOTES.md); ending the loop does not.
+  // TerminateApp() inside Start() crashes VTK 9.1 (docs/design.md); ending the loop does not.
   else if (key == "q" || key == "Escape") Interactor->SetDone(true);
 }
 

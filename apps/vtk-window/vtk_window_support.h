@@ -11,7 +11,7 @@ class vtkRenderWindowInteractor;
 namespace vesalius::gui {
 
 // Closing the window ends the event loop like the quit key (VTK 9.1's default TerminateApp() crashes
-// inside Start(), BUILD-NOTES.md).
+// inside Start(); docs/design.md).
 void endLoopOnWindowClose(vtkRenderWindowInteractor* interactor);
 
 // The window as last rendered, as a PNG written atomically.

@@ -3,7 +3,7 @@
 //
 // Why a seam: ITK 5.2 bundles Eigen 3.3 under the same namespace and include guards as the system
 // Eigen 3.4 that core/grid.h includes, so a file that sees both silently compiles against whichever came
-// first (BUILD-NOTES.md, "Two Eigens"). Nothing here may include Eigen or ITK headers.
+// first (docs/design.md, "Two Eigens"). Nothing here may include Eigen or ITK headers.
 //
 // Geometry follows ITK's physical space (LPS, mm): world = origin + direction · diag(spacing) · index.
 #pragma once

@@ -1,5 +1,6 @@
 // Offscreen 3-D render of surfaces (surface_render.h): one actor per layer, depth peeling for the
-// translucent ones, the frame read back with vtkWindowToImageFilter from the back buffer (BUILD-NOTES).
+// translucent ones, the frame read back with vtkWindowToImageFilter from the back buffer (docs/design.md,
+// "Where Debian 12's stack bites").
 #include "vesalius/viz/surface_render.h"
 
 #include "vesalius/core/error.h"
