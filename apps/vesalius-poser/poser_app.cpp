@@ -5,13 +5,15 @@
 #include "poser_interactor_style.h"
 #include "poser_window.h"
 
-#include "posing_session.h"
 #include "vtk_window_support.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/motion_io.h"
+#include "vesalius/rigging/rig_session.h"
 #include "vesalius/viz/display_connection.h"
 
 #include <filesystem>
+#include <iostream>
 
 namespace vesalius::poser {
 namespace {
@@ -37,8 +39,11 @@ std::vector<std::string> meshStems(const AnatomyRig& rig) {
 
 int runPoser(const PoserOptions& options) {
   checkOptions(options);
-  const posing::RigPoser session = cli::readRigPoser(options.anatomyDir, options.untangle, options.restoreVolume);
-  const cli::RetargetedMotion motion(options.motionPath, options.mapPath, options.motionLps, session.rig().skeleton);
+  const posing::RigPoser session = rigging::readRigPoser(options.anatomyDir, options.untangle, options.restoreVolume);
+  std::string warning;
+  Motion bvh = io::readBvh(options.motionPath, &warning);
+  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
+  const rigging::RetargetedMotion motion(std::move(bvh), options.mapPath, options.motionLps, session.rig().skeleton);
   if (options.frame < 0 || options.frame >= motion.frameCount())
     throw UsageError("--frame " + std::to_string(options.frame) + " outside 0.." +
                      std::to_string(motion.frameCount() - 1) + " of " + options.motionPath);

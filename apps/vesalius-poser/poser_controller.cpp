@@ -17,7 +17,7 @@ namespace vesalius::poser {
 
 namespace fs = std::filesystem;
 
-PoserController::PoserController(const posing::RigPoser& session, const cli::RetargetedMotion& motion,
+PoserController::PoserController(const posing::RigPoser& session, const rigging::RetargetedMotion& motion,
                                  AnatomyActors& actors, PoserWindow& window, const PoserOptions& options)
     : session_(session), motion_(motion), actors_(actors), window_(window), options_(options),
       frame_(options.frame), method_(options.method) {

@@ -9,7 +9,7 @@
 #include "poser_options.h"
 #include "poser_window.h"
 
-#include "posing_session.h"
+#include "vesalius/rigging/rig_session.h"
 
 #include <string>
 #include <vector>
@@ -19,7 +19,7 @@ namespace vesalius::poser {
 class PoserController {
  public:
   // All references are kept; options.method and options.frame are where it starts (shown by showFrame).
-  PoserController(const posing::RigPoser& session, const cli::RetargetedMotion& motion, AnatomyActors& actors,
+  PoserController(const posing::RigPoser& session, const rigging::RetargetedMotion& motion, AnatomyActors& actors,
                   PoserWindow& window, const PoserOptions& options);
 
   void showFrame(int frame);  // wraps into 0 .. frameCount - 1
@@ -42,7 +42,7 @@ class PoserController {
   void updateStatus(const std::string& note = "");
 
   const posing::RigPoser& session_;
-  const cli::RetargetedMotion& motion_;
+  const rigging::RetargetedMotion& motion_;
   AnatomyActors& actors_;
   PoserWindow& window_;
   const PoserOptions& options_;

@@ -1,43 +1,19 @@
 #include "bone_fat_amounts.h"
 
-#include "vesalius/core/error.h"
-#include "vesalius/io/text_file.h"
+#include "vesalius/io/fat_amounts_io.h"
 
 #include <nlohmann/json.hpp>
 
 #include <iostream>
-#include <limits>
-#include <utility>
-#include <vector>
 
 namespace vesalius::cli {
-
-namespace {
-
-// {"bone or group": amount, ...} in the file's order; a value that is not a number is NaN, which
-// fat::boneFatFromAmounts refuses by name.
-std::vector<std::pair<std::string, double>> readAmounts(const std::string& path) {
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(io::readTextFile(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw BadInput(path, std::string("not valid JSON: ") + e.what());
-  }
-  if (!json.is_object()) throw BadInput(path, "expected an object of bone names and fat amounts, e.g. {\"pelvis\": 0.4}");
-  std::vector<std::pair<std::string, double>> amounts;
-  for (const auto& [key, value] : json.items())
-    amounts.emplace_back(key, value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN());
-  return amounts;
-}
-
-}  // namespace
 
 Eigen::VectorXd boneFatAtSkin(const ReferenceAnatomy& reference, const std::string& referencePath,
                               const std::string& amountsPath, fat::BoneFatAmountsOptions options, io::Report& report) {
   options.referenceSource = referencePath;
   options.amountsSource = amountsPath;
   fat::checkBoneFatOptions(reference, options);  // before the file, so that bad options fail first
-  const fat::BoneFatAmounts f = fat::boneFatFromAmounts(reference, readAmounts(amountsPath), options);
+  const fat::BoneFatAmounts f = fat::boneFatFromAmounts(reference, io::readFatAmounts(amountsPath), options);
   nlohmann::json bones = nlohmann::json::array();
   for (const fat::BoneFatBone& b : f.bones)
     bones.push_back({{"name", b.name}, {"amount", b.amount}, {"voxels", b.voxels}, {"iterations", b.iterations},

@@ -1,6 +1,5 @@
 // vesalius info: what a scan, label table, mesh, marker, motion or skeleton file holds.
 #include "common.h"
-#include "posing_session.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/dicom_seg.h"

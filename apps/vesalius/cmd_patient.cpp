@@ -7,7 +7,6 @@
 #include "label_map_input.h"
 #include "modality_option.h"
 #include "patient_outputs.h"
-#include "posing_session.h"
 #include "shipped_data.h"
 
 #include "vesalius/core/error.h"
@@ -19,6 +18,7 @@
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/rig_poser.h"
 #include "vesalius/posing/skeleton_from_bone_meshes.h"
+#include "vesalius/rigging/rig_session.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <algorithm>
@@ -138,7 +138,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
     pose->angles = o.pose;
     pose->motion = o.motion;
     pose->frame = o.frame;
-    pose->world = motion ? RetargetedMotion(*motion, "", false, skeleton).pose(o.frame)
+    pose->world = motion ? rigging::RetargetedMotion(*motion, "", false, skeleton).pose(o.frame)
                          : posing::poseFromJointAngles(skeleton, posing::parseJointAngles(o.pose));
     run.progress.begin("pose", o.posing.method + " skinning, the scan re-posed");
     pose->posed = patient::posePatient(*p.rig, pose->world, scan, organs ? &*organs : nullptr, o.posing);

@@ -8,7 +8,6 @@
 #include "common.h"
 #include "label_map_input.h"
 #include "pose_outputs.h"
-#include "posing_session.h"
 
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/error.h"
@@ -17,6 +16,7 @@
 #include "vesalius/io/image_io.h"
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/pose_quality.h"
+#include "vesalius/rigging/rig_session.h"
 #include "vesalius/viz/surface_render.h"
 
 #include <chrono>
@@ -53,7 +53,7 @@ std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io:
   if (!o.angles.empty())
     return {{posing::poseFromJointAngles(rig.skeleton, posing::parseJointAngles(o.angles)), "", -1}};
   report.input("motion", o.motion);
-  const RetargetedMotion motion(o.motion, o.map, o.motionLps, rig.skeleton);
+  const rigging::RetargetedMotion motion(readMotion(o.motion), o.map, o.motionLps, rig.skeleton);
   const auto [first, last] = frameRange(o, motion.frameCount());
   std::vector<PoseSpec> poses;
   for (int f = first; f <= last; f += o.every) {
@@ -99,7 +99,7 @@ void runPose(const PoseOptions& o, CommandRun& run) {
   }
   const posing::RigPoser session = [&] {
     auto timer = run.report.time("embed");
-    return readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);
+    return rigging::readRigPoser(o.anatomy, !o.noUntangle, !o.noRestore);
   }();
   const AnatomyRig& rig = session.rig();
   const std::vector<TriMesh>& meshes = session.meshes();

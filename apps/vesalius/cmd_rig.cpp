@@ -4,7 +4,6 @@
 #include "command_runner.h"
 #include "common.h"
 #include "label_map_input.h"
-#include "posing_session.h"
 
 #include "vesalius/core/error.h"
 #include "vesalius/io/anatomy_rig_io.h"

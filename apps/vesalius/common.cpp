@@ -1,6 +1,7 @@
 #include "common.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/io/motion_io.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -366,6 +367,13 @@ Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::
   } catch (const UsageError&) {
     throw UsageError(labelsPath + ": no label '" + idOrName + "' (neither an id nor a name in its label table)");
   }
+}
+
+Motion readMotion(const std::string& bvhPath) {
+  std::string warning;
+  Motion motion = io::readBvh(bvhPath, &warning);
+  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
+  return motion;
 }
 
 void warnIfOverTetTarget(long tets, long targetTets, const std::string& option) {

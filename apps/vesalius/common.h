@@ -6,6 +6,7 @@
 #include "vesalius/core/error.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
+#include "vesalius/core/skeleton.h"
 
 #include <CLI/CLI.hpp>
 
@@ -58,6 +59,10 @@ std::string errorMessage(const Error& error);
 // (LabelTable::resolve: names case-insensitive). Throws UsageError naming `labelsPath` if it matches
 // nothing.
 Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::string& labelsPath);
+
+// A BVH file read for a command: a miscounted frame list is read as io::readBvh tolerates it, with its
+// warning on stderr.
+Motion readMotion(const std::string& bvhPath);
 
 // A warning line on stderr when a rig's tets are more than twice the target asked (`option` names it): its
 // surfaces stopped above their budgets (rigging/label_regions.h).

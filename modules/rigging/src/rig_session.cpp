@@ -1,15 +1,11 @@
-#include "posing_session.h"
+#include "vesalius/rigging/rig_session.h"
 
-#include "vesalius/core/error.h"
 #include "vesalius/io/anatomy_rig_io.h"
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/mesh_io.h"
-#include "vesalius/io/motion_io.h"
 #include "vesalius/io/text_file.h"
 
-#include <iostream>
-
-namespace vesalius::cli {
+namespace vesalius::rigging {
 
 namespace {
 
@@ -35,17 +31,6 @@ posing::JointMap motionJointMap(const std::string& mapPath, const Skeleton& sour
   return posing::defaultJointMap(source, rig);
 }
 
-Motion readMotion(const std::string& bvhPath) {
-  std::string warning;
-  Motion motion = io::readBvh(bvhPath, &warning);
-  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
-  return motion;
-}
-
-RetargetedMotion::RetargetedMotion(const std::string& bvhPath, const std::string& mapPath, bool motionLps,
-                                   const Skeleton& rig)
-    : RetargetedMotion(readMotion(bvhPath), mapPath, motionLps, rig) {}
-
 RetargetedMotion::RetargetedMotion(Motion motion, const std::string& mapPath, bool motionLps, const Skeleton& rig)
     : motion_(std::move(motion)),
       retargeter_(motion_.skeleton, rig, motionJointMap(mapPath, motion_.skeleton, rig), retargetOptions(motionLps, motion_, rig),
@@ -62,4 +47,4 @@ posing::RigPoser readRigPoser(const std::string& dir, bool untangle, bool restor
   return posing::RigPoser(std::move(rig), std::move(meshes), untangle, restoreVolume);
 }
 
-}  // namespace vesalius::cli
+}  // namespace vesalius::rigging
