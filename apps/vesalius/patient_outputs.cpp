@@ -140,6 +140,9 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                                {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance},
                                {"bone_groups_on_labels", groups},
                                {"bones_on_labels", bones},
+                               {"tissue_vertices_bent_into_skin", c.outsideBefore},
+                               {"tissue_vertices_left_outside_skin", c.outsideAfter},
+                               {"into_skin_largest_move_mm", c.bendLargestMm},
                                {"reference_faces_replaced_inside_scan", replaced}});
 }
 

@@ -382,6 +382,10 @@ TEST(CliPatient, AnMriOfAnotherSubjectBecomesAPatient) {
   std::cout << "completion: " << m["completion"].dump() << '\n';
   EXPECT_LT(m["completion"]["scan_skin_to_completed_mean_mm"].get<double>(), voxel);
   EXPECT_GT(anatomy.tissues.size(), 50u);
+  // Dicko et al.'s rule R5 on the whole model: no tissue vertex outside the skin (the reference's foot
+  // bones reach the thin skin of this body's feet; completeWithReference bends them inside).
+  std::cout << "anatomy rules, outside: " << m["anatomy_rules"]["outside"].dump() << '\n';
+  EXPECT_EQ(m["anatomy_rules"]["outside"]["outside"].get<long>(), 0);
   EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
   EXPECT_TRUE(fs::exists(out + "/rig/rig.vtu"));
 }

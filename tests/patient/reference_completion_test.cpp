@@ -117,9 +117,13 @@ TEST_P(ReferenceCompletionOfCt, SkinWithinAVoxelAndBonesInside) {
             << " s (";
   for (const auto& [stage, s] : c.stageSeconds) std::cout << stage << " " << s << " s, ";
   std::cout << ")\n";
+  // Step 4's promise: no tissue vertex left outside the completed skin (by the closest point on it).
+  std::cout << "tissue vertices bent into the completed skin: " << c.outsideBefore << ", moved up to "
+            << c.bendLargestMm << " mm; left outside: " << c.outsideAfter << "\n";
   EXPECT_LE(mean, kVoxelMm);
   EXPECT_LE(p95, kVoxelMm);
   EXPECT_EQ(outside, 0);
+  EXPECT_EQ(c.outsideAfter, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedCt, ReferenceCompletionOfCt,

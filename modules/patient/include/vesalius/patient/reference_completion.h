@@ -11,6 +11,9 @@
 //     beyond the scan is continued.
 //  3. The reference transferred into the completed skin (transfer_into_body.h: erosion §5, sub-fat
 //     registration, interpolation §7, bone registration §8).
+//  4. What the transfer left outside the completed skin (a foot bone's tip where the skin is thin) bent
+//     inside by one smooth displacement of all tissues (transfer/bones_warped_into_skin.h), so that tissues
+//     side by side stay so (Dicko et al. 2013, §3, rules R5, R6).
 // Deviations, plainly: Dicko et al. 2013 completes its torso reference with a full body before transfer; here the
 // patient's own scan is partial and the full body is fitted to it, so beyond the field of view the body
 // is the reference's, with the trunk's girth and pose (partial_skin_registration.h). Organ labels play no
@@ -37,6 +40,7 @@ struct ReferenceCompletionOptions {
   // (0.71 against 0.73 mm mean) and bones (none outside), 4 mm 56 s and 3.5 GB, as the full body with its
   // arms spread makes a large grid.
   TransferIntoBodyOptions transfer = withFieldVoxel(4.0);
+  transfer::InsideSkinWarpOptions intoSkin;  // step 4
 
   static TransferIntoBodyOptions withFieldVoxel(double mm) {
     TransferIntoBodyOptions o;
@@ -51,7 +55,10 @@ struct ReferenceCompletion {
   Eigen::VectorXd fatThickness;   // #reference skin V: the fat of step 2, mm
   MatrixX3d erodedSkin;           // #reference skin V by 3: the sub-fat skin the tissues were carried into
   transfer::PartialSkinRegistration registration;  // step 1 (its V is anatomy.skin.V)
-  TransferIntoBody transfer;      // step 3's details (its anatomy is `anatomy`)
+  TransferIntoBody transfer;      // step 3's details (its anatomy before step 4)
+  // Step 4: tissue vertices outside the completed skin before and after it, and its largest move (mm).
+  long outsideBefore = 0, outsideAfter = 0;
+  double bendLargestMm = 0;
   std::vector<std::pair<std::string, double>> stageSeconds;  // in the order they ran
 };
 
