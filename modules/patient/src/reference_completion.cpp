@@ -5,7 +5,6 @@
 #include "vesalius/core/error.h"
 #include "vesalius/core/stage_clock.h"
 #include "vesalius/core/triangle_tree.h"
-#include "vesalius/transfer/bones_warped_into_skin.h"
 #include "vesalius/transfer/surface_harmonic_extension.h"
 
 
@@ -68,21 +67,10 @@ ReferenceCompletion completeWithReference(const ReferenceAnatomy& patientInFov, 
   c.erodedSkin = c.transfer.erodedSkin;
 
   // Step 4: one displacement for all tissues, so that tissues side by side stay so.
-  MatrixX3d all(0, 3);
-  for (const ReferenceTissue& t : c.anatomy.tissues) {
-    all.conservativeResize(all.rows() + t.mesh.V.rows(), 3);
-    all.bottomRows(t.mesh.V.rows()) = t.mesh.V;
-  }
-  if (all.rows() > 0) {
-    const transfer::InsideSkinWarp bend = transfer::warpIntoSkin(all, skinDistances(c.anatomy.skin), options.intoSkin);
-    c.outsideBefore = bend.outsideBefore;
-    c.outsideAfter = bend.outsideAfter;
-    c.bendLargestMm = bend.largestMoveMm;
-    if (bend.outsideBefore > 0) {
-      for (ReferenceTissue& t : c.anatomy.tissues) t.mesh.V = bend.apply(t.mesh.V);
-      for (ReferencePoint& p : c.anatomy.points) p.position = bend.apply(p.position.transpose()).transpose();
-    }
-  }
+  const transfer::InsideSkinWarp bend = bendTissuesIntoSkin(c.anatomy, options.intoSkin);
+  c.outsideBefore = bend.outsideBefore;
+  c.outsideAfter = bend.outsideAfter;
+  c.bendLargestMm = bend.largestMoveMm;
   clock.end("tissues into the skin");
   return c;
 }

@@ -83,21 +83,9 @@ ReferenceOrgans referenceOrgans(const Image& ct, const LabelMap& organs, const s
   clock.end("kept tissues");
 
   // Step 4: one displacement for all, so that tissues side by side stay so.
-  MatrixX3d all(0, 3);
-  for (const ReferenceTissue& t : result.anatomy.tissues) {
-    all.conservativeResize(all.rows() + t.mesh.V.rows(), 3);
-    all.bottomRows(t.mesh.V.rows()) = t.mesh.V;
-  }
-  if (all.rows() > 0) {
-    const transfer::InsideSkinWarp bend =
-        transfer::warpIntoSkin(all, skinDistances(result.anatomy.skin), options.intoSkin);
-    result.bendLargestMm = bend.largestMoveMm;
-    for (std::size_t t = 0; t < result.anatomy.tissues.size(); ++t) {
-      TriMesh& mesh = result.anatomy.tissues[t].mesh;
-      mesh.V = bend.apply(mesh.V);
-      result.carried[t].outsideSkin = outsideSkin(mesh.V);
-    }
-  }
+  result.bendLargestMm = bendTissuesIntoSkin(result.anatomy, options.intoSkin).largestMoveMm;
+  for (std::size_t t = 0; t < result.anatomy.tissues.size(); ++t)
+    result.carried[t].outsideSkin = outsideSkin(result.anatomy.tissues[t].mesh.V);
   clock.end("bent inside the skin");
   if (result.anatomy.tissues.empty())
     throw BadInput(organsSource, "none of the reference's organs and muscles (liver, kidney_left, gluteus_maximus_left, "
