@@ -40,10 +40,7 @@ std::vector<std::string> meshStems(const AnatomyRig& rig) {
 int runPoser(const PoserOptions& options) {
   checkOptions(options);
   const posing::RigPoser session = rigging::readRigPoser(options.anatomyDir, options.untangle, options.restoreVolume);
-  std::string warning;
-  Motion bvh = io::readBvh(options.motionPath, &warning);
-  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
-  const rigging::RetargetedMotion motion(std::move(bvh), options.mapPath, options.motionLps, session.rig().skeleton);
+  const rigging::RetargetedMotion motion(io::readBvh(options.motionPath, std::cerr), options.mapPath, options.motionLps, session.rig().skeleton);
   if (options.frame < 0 || options.frame >= motion.frameCount())
     throw UsageError("--frame " + std::to_string(options.frame) + " outside 0.." +
                      std::to_string(motion.frameCount() - 1) + " of " + options.motionPath);

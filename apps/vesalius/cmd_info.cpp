@@ -87,7 +87,7 @@ void printMesh(const InfoOptions& o, io::MeshKind kind) {
 }
 
 void printMotion(const InfoOptions& o) {
-  const Motion motion = readMotion(o.file);
+  const Motion motion = io::readBvh(o.file, std::cerr);
   const double rate = 1.0 / motion.frameTime;
   std::cout << o.file << ": motion (BVH)\n"
             << "  joints       " << motion.skeleton.joints.size() << " (root '"

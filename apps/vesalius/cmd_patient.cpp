@@ -99,7 +99,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
   const std::vector<patient::OrganTemplate> templates = readOrganTemplates(o.templates);
   std::optional<Motion> motion;
   if (!o.motion.empty()) {
-    motion = readMotion(o.motion);
+    motion = io::readBvh(o.motion, std::cerr);
     if (o.frame >= motion->frameCount())
       throw UsageError("patient: --frame " + std::to_string(o.frame) + " outside 0.." +
                        std::to_string(motion->frameCount() - 1) + " of " + o.motion);

@@ -14,6 +14,7 @@
 #include "vesalius/io/dicom_rtstruct.h"
 #include "vesalius/io/dicom_seg.h"
 #include "vesalius/io/image_io.h"
+#include "vesalius/io/motion_io.h"
 #include "vesalius/posing/joint_angles.h"
 #include "vesalius/posing/pose_quality.h"
 #include "vesalius/rigging/rig_session.h"
@@ -53,7 +54,7 @@ std::vector<PoseSpec> readPoses(const PoseOptions& o, const AnatomyRig& rig, io:
   if (!o.angles.empty())
     return {{posing::poseFromJointAngles(rig.skeleton, posing::parseJointAngles(o.angles)), "", -1}};
   report.input("motion", o.motion);
-  const rigging::RetargetedMotion motion(readMotion(o.motion), o.map, o.motionLps, rig.skeleton);
+  const rigging::RetargetedMotion motion(io::readBvh(o.motion, std::cerr), o.map, o.motionLps, rig.skeleton);
   const auto [first, last] = frameRange(o, motion.frameCount());
   std::vector<PoseSpec> poses;
   for (int f = first; f <= last; f += o.every) {

@@ -10,6 +10,7 @@
 #include "vesalius/io/body_axes.h"
 #include "vesalius/io/image_io.h"
 #include "vesalius/io/mesh_io.h"
+#include "vesalius/io/motion_io.h"
 #include "vesalius/io/reference_anatomy_io.h"
 #include "vesalius/io/skeleton_io.h"
 #include "vesalius/rigging/body_rig.h"
@@ -46,7 +47,7 @@ TriMesh toLps(TriMesh mesh, bool makeHuman) {
 // skin: as read (a MakeHuman body in base.obj's units), for placing a .mhskel's joints in it.
 Skeleton readSkeleton(const RigOptions& o, const TriMesh& skin, bool makeHuman) {
   if (fileExtension(o.skeleton) == ".bvh") {
-    const Skeleton s = readMotion(o.skeleton).skeleton;
+    const Skeleton s = io::readBvh(o.skeleton, std::cerr).skeleton;
     return makeHuman ? io::transformSkeleton(s, io::yUpToLps(), 100.0) : s;
   }
   if (fileExtension(o.skeleton) != ".mhskel") throw UsageError("rig: --skeleton must be a .mhskel or .bvh file");

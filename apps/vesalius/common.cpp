@@ -369,13 +369,6 @@ Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::
   }
 }
 
-Motion readMotion(const std::string& bvhPath) {
-  std::string warning;
-  Motion motion = io::readBvh(bvhPath, &warning);
-  if (!warning.empty()) std::cerr << "warning: " << warning << '\n';
-  return motion;
-}
-
 void warnIfOverTetTarget(long tets, long targetTets, const std::string& option) {
   if (tets <= 2 * targetTets) return;
   std::cerr << "vesalius: warning: the rig has " << tets << " tets, more than twice the " << targetTets << " of "

@@ -60,10 +60,6 @@ std::string errorMessage(const Error& error);
 // nothing.
 Label resolveLabel(const LabelMap& map, const std::string& idOrName, const std::string& labelsPath);
 
-// A BVH file read for a command: a miscounted frame list is read as io::readBvh tolerates it, with its
-// warning on stderr.
-Motion readMotion(const std::string& bvhPath);
-
 // A warning line on stderr when a rig's tets are more than twice the target asked (`option` names it): its
 // surfaces stopped above their budgets (rigging/label_regions.h).
 void warnIfOverTetTarget(long tets, long targetTets, const std::string& option);

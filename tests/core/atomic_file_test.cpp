@@ -438,7 +438,7 @@ TEST_F(AtomicFolder, AFailureHalfwayLeavesTheOldFolderOrNone) {
         EXPECT_EQ(error.file(), target + "/meshes/m" + std::to_string(failAfter) + ".obj");
       }
       EXPECT_EQ(fs::exists(target), replacing);
-      if (replacing) EXPECT_EQ(contents(target), before);
+      if (replacing) { EXPECT_EQ(contents(target), before); }
       std::vector<std::string> expected{fs::path(target).filename().string()};
       if (!replacing) expected.clear();
       EXPECT_EQ(listing(), expected);  // no staging folder left

@@ -24,7 +24,7 @@ ProbeRun runProbe(const std::string& environment) {
   std::string output;
   std::array<char, 256> buffer{};
   while (pipe && std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
-  if (pipe) EXPECT_EQ(pclose(pipe), 0) << command;
+  if (pipe) { EXPECT_EQ(pclose(pipe), 0) << command; }
   ProbeRun run;
   std::istringstream lines(output);
   std::getline(lines, run.tunables);
@@ -57,7 +57,7 @@ TEST(TransparentHugePages, OtherTunablesAreKeptAndTheUsersChoiceWins) {
   const ProbeRun off = runProbe("GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
   EXPECT_EQ(off.tunables, "glibc.malloc.hugetlb=0");
   EXPECT_EQ(off.argument, "an argument");
-  if (kernelSetting() == "madvise") EXPECT_LT(off.hugeKb, 32 * 1024);  // nobody asked for huge pages
+  if (kernelSetting() == "madvise") { EXPECT_LT(off.hugeKb, 32 * 1024); }  // nobody asked for huge pages
 }
 
 }  // namespace

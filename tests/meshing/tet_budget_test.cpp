@@ -44,7 +44,7 @@ TEST(TetBudget, TargetHeldOnSurfacesOfAnyDensity) {
     EXPECT_GE(result.tets.T.rows(), options.targetTets / 2) << surface.F.rows() << " triangles";
     EXPECT_NEAR(volume / exact, 1.0, 0.05);
     EXPECT_EQ(tetQualityReport(result.tets.V, result.tets.T).inverted, 0);
-    if (surface.F.rows() <= meshing::facesForTets(options.targetTets)) EXPECT_EQ(result.coarsenings, 0);
+    if (surface.F.rows() <= meshing::facesForTets(options.targetTets)) { EXPECT_EQ(result.coarsenings, 0); }
   }
   options.targetTets = 0;
   EXPECT_THROW(meshing::tetrahedralizeWithinBudget(ellipsoid(2), options), UsageError);

@@ -150,8 +150,8 @@ TEST_P(OrganFitWarped, LibraryOrgansFitTheWarpedLabels) {
     const long topBefore = topSlice(labels), topAfter = topSlice(warped.labels);
     std::cout << patient.name << " " << w.organ << ": voxels x" << ratio << ", mean HU " << huBefore << " -> "
               << huAfter << ", on the top slice " << topBefore << " -> " << topAfter << '\n';
-    if (topBefore > 0) EXPECT_GT(topAfter, topBefore / 2) << w.organ;
-    if (enlarged) EXPECT_GT(ratio, 1.0) << w.organ;
+    if (topBefore > 0) { EXPECT_GT(topAfter, topBefore / 2) << w.organ; }
+    if (enlarged) { EXPECT_GT(ratio, 1.0) << w.organ; }
     else EXPECT_LT(ratio, 1.0) << w.organ;
     EXPECT_NEAR(huAfter, huBefore, 10.0) << w.organ;
   }

@@ -197,6 +197,13 @@ Motion parseBvh(std::string_view text, const std::string& source, std::string* w
 
 Motion readBvh(const std::string& path, std::string* warning) { return parseBvh(readTextFile(path), path, warning); }
 
+Motion readBvh(const std::string& path, std::ostream& warnings) {
+  std::string warning;
+  Motion motion = readBvh(path, &warning);
+  if (!warning.empty()) warnings << "warning: " << warning << '\n';
+  return motion;
+}
+
 // ---- writing ----
 
 namespace {

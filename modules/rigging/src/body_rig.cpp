@@ -205,6 +205,17 @@ LabelMap bonesBox(const LabelMap& map, const posing::BoneSkeleton& bones, double
 // volume (below).
 constexpr int kMinSkinFaces = 2000;
 
+// How a rig's regions are surfaced: a solid body (a rig of bone labels) or a skin (a reference's rig).
+// checkRigTargetTets takes its floors from the same options.
+LabelRegionOptions rigRegionOptions(bool solidBody) {
+  LabelRegionOptions regions;
+  regions.solidBody = solidBody;
+  regions.largestPartOnly = solidBody;
+  regions.largestBodyPartOnly = !solidBody;
+  regions.closeOverBudget = !solidBody;
+  return regions;
+}
+
 // The body (every labelled voxel, made solid) as the outer region and each bone label nested in it, as
 // `tetmesh --labels --body` makes them (label_regions.h); decimated, since TetGen keeps every boundary
 // triangle. Each bone is first grown by a voxel into the tissue around it (not into other bones): plates a
@@ -238,12 +249,8 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
     for (std::size_t v = 0; v < grown.values.size(); ++v)
       if (grown.values[v] && !isBone[rest.values[v]] && (solidBody || rest.values[v] != 0)) box.labels.values[v] = l;
   }
-  LabelRegionOptions regions;
+  LabelRegionOptions regions = rigRegionOptions(solidBody);
   regions.body = body;
-  regions.solidBody = solidBody;
-  regions.largestPartOnly = solidBody;
-  regions.largestBodyPartOnly = !solidBody;
-  regions.closeOverBudget = !solidBody;
   // A coarse body surface can cut a bone a voxel below it (the test CT's body at 3,562 faces crossed
   // hip_right at 10 triangle pairs; an MRI's whole model at 2,000 tets crossed its torso bones at 40):
   // finer budgets then, and TetGen names the crossing if they stay.
@@ -344,7 +351,7 @@ posing::SkeletonFromBoneMeshesOptions withTorsoOf(const ReferenceAnatomy& refere
 }  // namespace
 
 void checkRigTargetTets(long targetTets, std::size_t bones, bool reference) {
-  const long least = leastTargetTets(LabelRegionOptions{}, bones, reference ? kMinSkinFaces : kMinBodyFaces);
+  const long least = leastTargetTets(rigRegionOptions(!reference), bones, reference ? kMinSkinFaces : kMinBodyFaces);
   if (targetTets < least)
     throw UsageError(std::to_string(targetTets) + " tets are too few for a rig of " + std::to_string(bones) +
                      " bones: the body's and the bones' surfaces keep at least " + std::to_string(least / 2) +

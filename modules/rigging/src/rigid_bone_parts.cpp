@@ -61,7 +61,7 @@ posing::RigidParts rigidBoneParts(const AnatomyRig& rig, const std::vector<TriMe
     GridGeometry box = out;
     box.origin = out.indexToWorld(lo.cast<double>());
     box.size = hi - lo + Eigen::Vector3i::Ones();
-    const Grid<std::uint8_t> inside = meshing::windingNumberMask(TriMesh{posedMeshes[m], restMeshes[m].F}, box);
+    const Grid<std::uint8_t> inside = meshing::windingNumberMask(TriMesh{posedMeshes[m], restMeshes[m].F, {}, {}, {}, {}}, box);
     for (int k = 0; k < box.size.z(); ++k)
       for (int j = 0; j < box.size.y(); ++j)
         for (int i = 0; i < box.size.x(); ++i) {

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace vesalius::io {
 namespace {
@@ -172,6 +173,13 @@ TEST(Bvh, MiscountedFrameListsAreReadWithOneWarning) {
   EXPECT_NE(warning.find("line 21: 1 frame line beyond 'Frames: 2' not read"), std::string::npos) << warning;
   EXPECT_EQ(readBvh(kData + "/motion/bvh_fewer_frame_lines.bvh", &warning).frameCount(), 2);
   EXPECT_NE(warning.find("2 frame lines for 'Frames: 3'"), std::string::npos) << warning;
+  // A program's reading: the same warning as one line on the stream it gives; nothing for an exact file.
+  std::ostringstream lines;
+  EXPECT_EQ(readBvh(kData + "/motion/bvh_fewer_frame_lines.bvh", lines).frameCount(), 2);
+  EXPECT_EQ(lines.str(), "warning: " + warning + "\n");
+  std::ostringstream none;
+  readBvh(path, none);
+  EXPECT_EQ(none.str(), "");
   // A broken frame among the declared ones is still refused: the count of its values is not a miscount.
   EXPECT_THROW(parseBvh(shorter + "\n1 2 3\n", "broken.bvh"), BadInput);
 }

@@ -19,6 +19,7 @@
 #include "vesalius/core/atomic_file.h"
 #include "vesalius/core/skeleton.h"
 
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -26,6 +27,8 @@ namespace vesalius::io {
 
 Motion parseBvh(std::string_view text, const std::string& source, std::string* warning = nullptr);
 Motion readBvh(const std::string& path, std::string* warning = nullptr);
+// The same for a program: the warning, if any, written to `warnings` as one line "warning: …".
+Motion readBvh(const std::string& path, std::ostream& warnings);
 
 // Same hierarchy, channels and values; numbers in the shortest form that reads back exactly, so
 // read -> write -> read gives identical values. A joint with no children, or with a non-zero tail, gets
