@@ -143,7 +143,10 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                                {"tissue_vertices_bent_into_skin", c.outsideBefore},
                                {"tissue_vertices_left_outside_skin", c.outsideAfter},
                                {"into_skin_largest_move_mm", c.bendLargestMm},
-                               {"reference_faces_replaced_inside_scan", replaced}});
+                               {"reference_faces_replaced_inside_scan", replaced},
+                               {"reference_points_bent_out_of_patient", whole.apart.insideBefore},
+                               {"reference_points_left_in_patient", whole.apart.insideAfter},
+                               {"out_of_patient_largest_move_mm", whole.apart.largestMoveMm}});
 }
 
 // Dicko et al.'s rules on the whole model, in brief: whether each holds and its worst value and tissue.

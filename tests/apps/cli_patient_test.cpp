@@ -17,12 +17,14 @@
 #include "vesalius/meshing/winding_mask.h"
 #include "vesalius/posing/posed_volume.h"
 #include "vesalius/segmentation/label_ops.h"
+#include "vesalius/transfer/anatomy_rules.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <iostream>
+#include <set>
 
 namespace vesalius::test {
 namespace {
@@ -53,6 +55,31 @@ double offRigid(const MatrixX3d& rest, const MatrixX3d& posed) {
 double boundaryDistance(const TriMesh& mesh, const LabelMap& labels, Label id) {
   const TriMesh boundary = meshing::withinScan(meshing::labelSurfaces(labels, {id}).front().mesh, labels.labels.geometry);
   return meanDistanceToSurface(boundary.V, mesh);
+}
+
+// The deepest reach, in mm, between a tissue of the full-body reference and one of the patient's (a tissue
+// the report's label_tissues names), either into the other, as transfer::checkAnatomyRules measures
+// interpenetration; each such pair deeper than Dicko et al.'s 1 mm is printed.
+double deepestReferenceIntoPatient(const ReferenceAnatomy& model, const nlohmann::json& labelTissues) {
+  std::set<std::string> patient;
+  for (const auto& [label, files] : labelTissues.items())
+    for (const auto& file : files) patient.insert(file.get<std::string>());
+  const auto isPatient = [&](const ReferenceTissue& t) { return patient.count("anatomy/" + io::tissueFile(t.name)) > 0; };
+  transfer::AnatomyRulesOptions options;
+  options.outside = options.folds = options.symmetry = options.straightness = false;
+  const transfer::AnatomyRules rules = transfer::checkAnatomyRules(model, model, nullptr, options);
+  double deepest = 0;
+  long pairs = 0;
+  for (const transfer::Interpenetration& p : rules.interpenetration.pairs) {
+    const ReferenceTissue &a = model.tissues[std::size_t(p.a)], &b = model.tissues[std::size_t(p.b)];
+    if (isPatient(a) == isPatient(b)) continue;
+    ++pairs;
+    deepest = std::max(deepest, p.depthMm);
+    if (p.depthMm > options.interpenetrationToleranceMm)
+      std::cout << "  " << a.name << " / " << b.name << ": " << p.depthMm << " mm\n";
+  }
+  std::cout << pairs << " pairs of a reference and a patient tissue touching, the deepest " << deepest << " mm\n";
+  return deepest;
 }
 
 TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
@@ -128,7 +155,13 @@ TEST(CliPatient, DemoIsThePatientsOwnAnatomyInsideTheFieldOfView) {
     EXPECT_EQ(inside, 0);
   }
   for (const ReferenceTissue& t : anatomy.tissues)
-    if (t.name.rfind("vertebrae_", 0) == 0 || t.name.rfind("rib_", 0) == 0) EXPECT_EQ(t.group, "torso") << t.name;
+    if (t.name.rfind("vertebrae_", 0) == 0 || t.name.rfind("rib_", 0) == 0) {
+      EXPECT_EQ(t.group, "torso") << t.name;
+    }
+  // The reference's tissues bent out of the patient's (the rib cage above the scan out of the liver the
+  // template continues there, the patellae and tibiae off the femurs brought onto their labels): Dicko et
+  // al.'s 1 mm between the two sources.
+  EXPECT_LE(deepestReferenceIntoPatient(anatomy, m["label_tissues"]), 1.0);
 
   // The scan's skin: closed, its cut on the field of view's caps, fat from the forests (none on the cut).
   const ReferenceAnatomy scanAnatomy = io::readReferenceAnatomy(out + "/scan_anatomy");
@@ -386,6 +419,14 @@ TEST(CliPatient, AnMriOfAnotherSubjectBecomesAPatient) {
   // bones reach the thin skin of this body's feet; completeWithReference bends them inside).
   std::cout << "anatomy rules, outside: " << m["anatomy_rules"]["outside"].dump() << '\n';
   EXPECT_EQ(m["anatomy_rules"]["outside"]["outside"].get<long>(), 0);
+  // The reference's rib cage, which reached 22 mm into this subject's liver, bent out of the patient's
+  // organs; the MR labels' one "vertebrae" takes the reference spine's place inside the slab.
+  EXPECT_GT(m["completion"]["reference_faces_replaced_inside_scan"].value("hat_spine", 0L), 0L);
+  const auto vertebrae = std::find_if(anatomy.tissues.begin(), anatomy.tissues.end(),
+                                      [&](const ReferenceTissue& x) { return x.name == "vertebrae"; });
+  ASSERT_NE(vertebrae, anatomy.tissues.end());
+  EXPECT_EQ(vertebrae->group, "torso");
+  EXPECT_LE(deepestReferenceIntoPatient(anatomy, m["label_tissues"]), 1.0);
   EXPECT_EQ(m["hip_joints"]["left"], "femur_l");
   EXPECT_TRUE(fs::exists(out + "/rig/rig.vtu"));
 }

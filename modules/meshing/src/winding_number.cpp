@@ -137,4 +137,17 @@ Eigen::VectorXd windingNumbers(const MatrixX3d& V, const MatrixX3i& F, const Mat
   return w;
 }
 
+std::vector<PointInside> pointsInside(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3d& P) {
+  std::vector<PointInside> inside;
+  if (P.rows() == 0) return inside;
+  const Eigen::VectorXd w = windingNumbers(V, F, P);
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    if (w[r] >= 0.5) rows.push_back(r);
+  if (rows.empty()) return inside;
+  const std::vector<ClosestPoint> closest = TriangleTree(V, F).closest(MatrixX3d(P(rows, Eigen::all)));
+  for (std::size_t k = 0; k < rows.size(); ++k) inside.push_back({rows[k], closest[k]});
+  return inside;
+}
+
 }  // namespace vesalius::meshing

@@ -17,10 +17,10 @@ void classifyTissue(ReferenceTissue& tissue) {
   const auto matches = [&n](const char* pattern) { return std::regex_match(n, std::regex(pattern)); };
   tissue.group.clear();
   tissue.symmetric = false;
-  if (matches("(vertebrae_.*|sacrum|hip_(left|right)|rib_(left|right)_.*|sternum|skull|costal_cartilages)")) {
+  if (matches("(vertebrae(_.*)?|sacrum|hip_(left|right)|rib_(left|right)_.*|sternum|skull|costal_cartilages)")) {
     tissue.kind = TissueKind::Bone;
     tissue.symmetric = true;
-    tissue.group = matches("vertebrae_.*") ? n
+    tissue.group = matches("vertebrae(_.*)?") ? n
                    : matches("(sacrum|hip_.*)") ? "pelvis"
                    : matches("skull") ? "skull" : "rib_cage";
   } else if (matches("(femur|humerus|scapula|clavicula|tibia|fibula|patella|radius|ulna)_.*")) {

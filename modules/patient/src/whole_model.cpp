@@ -1,10 +1,13 @@
 #include "vesalius/patient/whole_model.h"
 
 #include "labels_with_voxels.h"
+#include "skin_distances.h"
 
+#include "vesalius/core/cap_holes.h"
 #include "vesalius/core/keep_faces.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/surface_samples.h"
+#include "vesalius/transfer/tissues_bent_apart.h"
 
 #include <algorithm>
 
@@ -76,7 +79,9 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
   const auto named = [&](const std::string& name) {
     return std::find_if(tissues.begin(), tissues.end(), [&](const ReferenceTissue& x) { return x.name == name; });
   };
-  std::vector<std::string> represented;
+  // The labels the registered bones represent; the tissues that are the patient's (those bones and the
+  // scan's), which the reference's give way to.
+  std::vector<std::string> represented, patientTissues;
   for (const auto& [tissueName, label] : options.boneLabels) {
     const Label id = present.idOf(label);
     const auto t = named(tissueName);
@@ -86,6 +91,7 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
     t->mesh = bone.registration.mesh;
     model.labelTissues[label] = {tissueName};
     represented.push_back(label);
+    patientTissues.push_back(tissueName);
     model.bones.push_back(std::move(bone));
   }
   for (const auto& [tissueName, label] : options.replacedInsideScan) {
@@ -95,7 +101,7 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
     const long gone = long(std::count(keep.begin(), keep.end(), false));
     if (gone == 0) continue;
     model.replacedFaces.emplace_back(tissueName, gone);
-    t->mesh = keepFaces(t->mesh, keep);
+    t->mesh = capHoles(keepFaces(t->mesh, keep));
     if (t->mesh.F.rows() == 0) tissues.erase(t);
   }
   // Each group's symmetry, which a bone joining it takes (a group agrees on it, core/anatomy.h).
@@ -119,7 +125,14 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
     else
       tissues.push_back(std::move(added));
     model.labelTissues[tissue.name] = {tissue.name};
+    patientTissues.push_back(tissue.name);
   }
+  std::vector<transfer::BendRole> roles;
+  for (const ReferenceTissue& t : tissues)
+    roles.push_back(std::find(patientTissues.begin(), patientTissues.end(), t.name) != patientTissues.end()
+                        ? transfer::BendRole::Fixed
+                        : transfer::BendRole::Bent);
+  model.apart = transfer::bendTissuesApart(model.anatomy, roles, skinDistances(model.anatomy.skin), options.apart);
   return model;
 }
 

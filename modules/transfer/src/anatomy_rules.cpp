@@ -267,19 +267,13 @@ std::map<std::pair<int, int>, Interpenetration> interpenetrations(const Referenc
     MatrixX3d P(Eigen::Index(candidates.size()), 3);
     for (std::size_t i = 0; i < candidates.size(); ++i)
       P.row(Eigen::Index(i)) = anatomy.tissues[std::size_t(candidates[i].first)].mesh.V.row(candidates[i].second);
-    const Eigen::VectorXd winding = meshing::windingNumbers(B.V, B.F, P);
-    std::vector<Eigen::Index> inside;
-    for (Eigen::Index i = 0; i < P.rows(); ++i)
-      if (winding[i] >= 0.5) inside.push_back(i);
-    if (inside.empty()) continue;
-    const std::vector<ClosestPoint> closest = TriangleTree(B.V, B.F).closest(MatrixX3d(P(inside, Eigen::all)));
-    for (std::size_t k = 0; k < inside.size(); ++k) {
-      const int a = candidates[std::size_t(inside[k])].first;
+    for (const meshing::PointInside& in : meshing::pointsInside(B.V, B.F, P)) {
+      const int a = candidates[std::size_t(in.row)].first;
       Interpenetration& pair = pairs[{std::min(a, b), std::max(a, b)}];
       pair.a = std::min(a, b), pair.b = std::max(a, b);
       ++pair.vertices;
-      const double depth = std::sqrt(closest[k].squaredDistance);
-      if (depth >= pair.depthMm) pair.depthMm = depth, pair.at = P.row(inside[k]).transpose();
+      const double depth = std::sqrt(in.closest.squaredDistance);
+      if (depth >= pair.depthMm) pair.depthMm = depth, pair.at = P.row(in.row).transpose();
     }
   }
   return pairs;

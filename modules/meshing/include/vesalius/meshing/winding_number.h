@@ -13,6 +13,9 @@
 #pragma once
 
 #include "vesalius/core/mesh.h"
+#include "vesalius/core/triangle_tree.h"
+
+#include <vector>
 
 namespace vesalius::meshing {
 
@@ -27,5 +30,16 @@ struct WindingNumberOptions {
 // outside V, UsageError if beta is negative.
 Eigen::VectorXd windingNumbers(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3d& P,
                                const WindingNumberOptions& options = {});
+
+// A row of P inside a closed surface and the closest point on that surface (its distance is the row's
+// depth).
+struct PointInside {
+  Eigen::Index row = 0;
+  ClosestPoint closest;
+};
+
+// The rows of P (#P by 3) inside the closed surface (V, F): winding number at least 1/2. How deep one
+// tissue reaches into another (transfer/anatomy_rules.h) and where a tissue is moved out of one.
+std::vector<PointInside> pointsInside(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3d& P);
 
 }  // namespace vesalius::meshing

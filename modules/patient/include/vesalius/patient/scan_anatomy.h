@@ -16,9 +16,10 @@
 namespace vesalius::patient {
 
 // Kind, bone group and symmetry of a TotalSegmentator label name, as Dicko et al. 2013, §8, moves bones: the trunk
-// (spine, sternum, pelvis, rib cage, skull) symmetrically, each vertebra a group of its own, the ribs and
-// sternum the rib cage, hips and sacrum the pelvis; paired limb bones freely; gluteal, iliopsoas and back
-// muscles are muscles; every other label an organ. Sets tissue.kind, .group, .symmetric from tissue.name.
+// (spine, sternum, pelvis, rib cage, skull) symmetrically, each vertebra (or the MR labels' one "vertebrae")
+// a group of its own, the ribs and sternum the rib cage, hips and sacrum the pelvis; paired limb bones
+// freely; gluteal, iliopsoas and back muscles are muscles; every other label an organ. Sets tissue.kind,
+// .group, .symmetric from tissue.name.
 void classifyTissue(ReferenceTissue& tissue);
 
 // The sagittal plane from the tissues that come in left/right pairs (names with "left" / "right"): its

@@ -8,17 +8,22 @@
 //  - Reference bones that labels show bone by bone: OpenSim gives the spine, the rib cage with the
 //    scapulae and the skull as one mesh each, where the organ map has a label per vertebra and per rib.
 //    Inside the field of view the labels' surfaces take their place: the reference mesh keeps only its
-//    faces wholly beyond the scan (`replacedInsideScan`).
+//    faces wholly beyond the scan (`replacedInsideScan`), its cut closed by fans (core/cap_holes.h) so
+//    that it keeps an inside.
 //  - Every other tissue of the patient's anatomy (the fitted organs, other bones and muscles of the labels)
 //    is added under its label's name; a reference tissue of the same name gives way to it. A bone of the
 //    labels that `groupLabels` pairs with an OpenSim body joins that body's group (the sacrum the pelvis,
 //    vertebrae and ribs the torso), so that a rig of the model moves it with that body's joint.
 //  - The skin is the completed skin (the scan's skin where the scan sees skin, the reference's beyond).
+//  - The reference's tissues that reach into the patient's (its rib cage above the scan into the liver that
+//    a template continued there, its tibiae and patellae into femurs brought onto larger labels) are bent
+//    out of them, inside the skin (transfer/tissues_bent_apart.h); the patient's own tissues do not move.
 #pragma once
 
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/patient/bone_onto_label.h"
+#include "vesalius/transfer/tissues_bent_apart.h"
 
 #include <map>
 #include <string>
@@ -36,16 +41,16 @@ inline std::vector<std::pair<std::string, std::string>> defaultReferenceBoneLabe
 }
 
 // Rajagopal's trunk meshes that TotalSegmentator's labels show bone by bone, and the labels that show them
-// (a name ending in '*' is a prefix).
+// (a name ending in '*' is a prefix): its CT labels name each vertebra, its MR labels all as "vertebrae".
 inline std::vector<std::pair<std::string, std::string>> defaultReferenceBonesReplacedInsideScan() {
-  return {{"hat_spine", "vertebrae_*"}, {"hat_ribs_scap", "rib_*"}, {"hat_skull", "skull"}};
+  return {{"hat_spine", "vertebrae*"}, {"hat_ribs_scap", "rib_*"}, {"hat_skull", "skull"}};
 }
 
 // Rajagopal's bone groups (OpenSim's bodies) and the TotalSegmentator labels that show them; a name
 // ending in '*' is a prefix.
 inline std::vector<std::pair<std::string, std::string>> defaultBoneGroupLabels() {
   return {{"pelvis", "hip_left"},   {"pelvis", "hip_right"},   {"pelvis", "sacrum"},     {"femur_l", "femur_left"},
-          {"femur_r", "femur_right"}, {"torso", "vertebrae_*"}, {"torso", "rib_*"},       {"torso", "sternum"},
+          {"femur_r", "femur_right"}, {"torso", "vertebrae*"}, {"torso", "rib_*"},       {"torso", "sternum"},
           {"torso", "costal_cartilages"}, {"torso", "scapula_*"}, {"torso", "clavicula_*"}, {"skull", "skull"}};
 }
 
@@ -64,10 +69,18 @@ struct WholeModelOptions {
   // The bones are placed by the transfer's per-bone registration: no affine step of their own, so the
   // group's map keeps them where the muscles and the bones beyond the scan were carried.
   BoneOntoLabelOptions bones = placedBones();
+  // The bend of the reference's tissues out of the patient's: how far apart they should end, and its
+  // reaches (a rib's, then a patella's). Rounds 0: no bend.
+  transfer::InsideSkinWarpOptions apart = apartBend();
 
   static BoneOntoLabelOptions placedBones() {
     BoneOntoLabelOptions o;
     o.affineTargets = 0;
+    return o;
+  }
+  static transfer::InsideSkinWarpOptions apartBend() {
+    transfer::InsideSkinWarpOptions o;
+    o.marginMm = 0.5;
     return o;
   }
 };
@@ -86,6 +99,8 @@ struct WholeModel {
   // Each reference tissue that the labels replaced inside the scan, and how many of its faces went (a
   // tissue whose faces all went is gone from the model).
   std::vector<std::pair<std::string, long>> replacedFaces;
+  // The reference's tissues bent out of the patient's.
+  transfer::TissuesBentApart apart;
 };
 
 // completed: the reference completed into the patient; inFov: the patient's anatomy inside the field of

@@ -1,0 +1,154 @@
+// Tissues bent out of the tissues they reach into (tissues_bent_apart.h).
+#include "vesalius/transfer/tissues_bent_apart.h"
+
+#include "vesalius/core/error.h"
+#include "vesalius/meshing/winding_number.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace vesalius::transfer {
+
+namespace {
+
+Eigen::AlignedBox3d boxOf(const MatrixX3d& V) {
+  return V.rows() ? Eigen::AlignedBox3d(V.colwise().minCoeff().transpose(), V.colwise().maxCoeff().transpose())
+                  : Eigen::AlignedBox3d();
+}
+
+// The vertices of `mesh`, then its edges' midpoints and its faces' centroids.
+MatrixX3d surfacePoints(const TriMesh& mesh) {
+  std::set<std::pair<int, int>> edges;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) edges.emplace(std::minmax(mesh.F(f, k), mesh.F(f, (k + 1) % 3)));
+  MatrixX3d P(mesh.V.rows() + Eigen::Index(edges.size()) + mesh.F.rows(), 3);
+  P.topRows(mesh.V.rows()) = mesh.V;
+  Eigen::Index r = mesh.V.rows();
+  for (const auto& [a, b] : edges) P.row(r++) = (mesh.V.row(a) + mesh.V.row(b)) / 2;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    P.row(r++) = (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))) / 3;
+  return P;
+}
+
+// Area-weighted vertex normals, of unit length.
+MatrixX3d vertexNormals(const TriMesh& mesh) {
+  MatrixX3d N = MatrixX3d::Zero(mesh.V.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) N.row(mesh.F(f, k)) += n;
+  }
+  N.rowwise().normalize();
+  return N;
+}
+
+// A bent tissue: its rows in the measured points (its vertices first, then surfacePoints' others) and its
+// triangles.
+struct BentTissue {
+  Eigen::Index first = 0, vertices = 0, rows = 0;
+  const MatrixX3i* F = nullptr;
+};
+
+// A fixed tissue: its box and vertex normals.
+struct FixedTissue {
+  const TriMesh* mesh = nullptr;
+  Eigen::AlignedBox3d box;
+  MatrixX3d normals;
+};
+
+// The distances warpIntoSkin takes (the header's three cases, the largest), the skin's signed distance
+// where none applies.
+SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std::vector<BentTissue>& bent,
+                                const SkinDistanceFunction& skin) {
+  const auto deepen = [](SkinDistances& d, Eigen::Index r, double depth, const Eigen::RowVector3d& outward) {
+    if (depth <= d.distance[r]) return;
+    d.distance[r] = depth;
+    d.outward.row(r) = outward;
+  };
+  return [fixed, bent, skin, deepen](const MatrixX3d& P) {
+    SkinDistances d = skin(P);
+    for (const FixedTissue& f : fixed) {
+      std::vector<Eigen::Index> rows;
+      for (Eigen::Index r = 0; r < P.rows(); ++r)
+        if (f.box.contains(P.row(r).transpose())) rows.push_back(r);
+      if (rows.empty()) continue;
+      for (const meshing::PointInside& in : meshing::pointsInside(f.mesh->V, f.mesh->F, MatrixX3d(P(rows, Eigen::all)))) {
+        const Eigen::Index r = rows[std::size_t(in.row)];
+        const Eigen::RowVector3d deeper = P.row(r) - in.closest.point.transpose();
+        if (deeper.norm() > 1e-9) deepen(d, r, deeper.norm(), deeper.normalized());
+      }
+    }
+    for (const BentTissue& t : bent) {
+      const MatrixX3d V = P.middleRows(t.first, t.vertices);
+      const Eigen::AlignedBox3d box = boxOf(V);
+      for (const FixedTissue& f : fixed) {
+        if (!f.box.intersects(box)) continue;
+        std::vector<Eigen::Index> rows;
+        for (Eigen::Index v = 0; v < f.mesh->V.rows(); ++v)
+          if (box.contains(f.mesh->V.row(v).transpose())) rows.push_back(v);
+        if (rows.empty()) continue;
+        for (const meshing::PointInside& in : meshing::pointsInside(V, *t.F, MatrixX3d(f.mesh->V(rows, Eigen::all)))) {
+          const Eigen::Index v = rows[std::size_t(in.row)];
+          Eigen::Index nearest = 0;
+          (P.middleRows(t.first, t.rows).rowwise() - f.mesh->V.row(v)).rowwise().squaredNorm().minCoeff(&nearest);
+          deepen(d, t.first + nearest, std::sqrt(in.closest.squaredDistance), -f.normals.row(v));
+        }
+      }
+    }
+    return d;
+  };
+}
+
+}  // namespace
+
+TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<BendRole>& roles,
+                                  const SkinDistanceFunction& skin, const InsideSkinWarpOptions& options) {
+  std::vector<ReferenceTissue>& tissues = anatomy.tissues;
+  if (roles.size() != tissues.size()) throw UsageError("bendTissuesApart: one role per tissue is needed");
+  std::vector<FixedTissue> fixed;
+  for (std::size_t t = 0; t < tissues.size(); ++t)
+    if (roles[t] == BendRole::Fixed && tissues[t].mesh.F.rows() > 0)
+      fixed.push_back({&tissues[t].mesh, boxOf(tissues[t].mesh.V), vertexNormals(tissues[t].mesh)});
+  std::vector<BentTissue> bent;
+  MatrixX3d P(0, 3);
+  for (std::size_t t = 0; t < tissues.size(); ++t) {
+    const TriMesh& mesh = tissues[t].mesh;
+    if (roles[t] != BendRole::Bent || mesh.F.rows() == 0) continue;
+    const Eigen::AlignedBox3d box = boxOf(mesh.V);
+    if (std::none_of(fixed.begin(), fixed.end(), [&](const FixedTissue& f) { return f.box.intersects(box); })) continue;
+    const MatrixX3d points = surfacePoints(mesh);
+    bent.push_back({P.rows(), mesh.V.rows(), points.rows(), &mesh.F});
+    P.conservativeResize(P.rows() + points.rows(), 3);
+    P.bottomRows(points.rows()) = points;
+  }
+  TissuesBentApart result;
+  if (P.rows() == 0 || options.rounds == 0) return result;
+  const InsideSkinWarp bend = warpIntoSkin(P, reachingIn(fixed, bent, skin), options);
+  result.insideBefore = bend.outsideBefore;
+  result.insideAfter = bend.outsideAfter;
+  result.largestMoveMm = bend.largestMoveMm;
+  if (bend.centres.empty()) return result;
+  // The bend is zero beyond the reach of every centre.
+  Eigen::AlignedBox3d reach;
+  for (std::size_t r = 0; r < bend.centres.size(); ++r) {
+    const Eigen::AlignedBox3d b = boxOf(bend.centres[r]);
+    reach.extend(b.min() - Eigen::Vector3d::Constant(bend.radiiMm[r]));
+    reach.extend(b.max() + Eigen::Vector3d::Constant(bend.radiiMm[r]));
+  }
+  std::vector<std::string> moved;
+  for (std::size_t t = 0; t < tissues.size(); ++t) {
+    if (roles[t] != BendRole::Bent || tissues[t].mesh.V.rows() == 0 || !boxOf(tissues[t].mesh.V).intersects(reach)) continue;
+    tissues[t].mesh.V = bend.apply(tissues[t].mesh.V);
+    moved.push_back(tissues[t].name);
+  }
+  for (ReferencePoint& p : anatomy.points)
+    if (std::find(moved.begin(), moved.end(), p.tissue) != moved.end())
+      p.position = bend.apply(p.position.transpose()).transpose();
+  return result;
+}
+
+}  // namespace vesalius::transfer
