@@ -80,7 +80,7 @@ TEST(TissuesBentApart, ACoarseBoneAcrossAThinRimIsMovedOffIt) {
   EXPECT_EQ(bend.insideAfter, 0);
 }
 
-TEST(TissuesBentApart, NothingToDoAndBadRoles) {
+TEST(TissuesBentApart, TissuesApartStayAndRolesOfAnotherLengthAreRefused) {
   ReferenceAnatomy anatomy = anatomyOf({{"a", test::sphere(2, 10.0, {-30, 0, 0})}, {"b", test::sphere(2, 10.0, {30, 0, 0})}});
   const ReferenceAnatomy before = anatomy;
   const TissuesBentApart bend = bendTissuesApart(anatomy, {BendRole::Fixed, BendRole::Bent}, sphereSkin, {});
