@@ -1,5 +1,5 @@
 // Holes closed by fans (cap_holes.h): the capped surface is closed and consistently oriented, and encloses
-// the volume of the cut solid with flat caps.
+// the volume of the cut solid with flat caps. And the vertex normals of mesh_measures.h on the same cube.
 #include "vesalius/core/cap_holes.h"
 #include "vesalius/core/keep_faces.h"
 #include "vesalius/core/mesh_measures.h"
@@ -58,6 +58,26 @@ TEST(CapHoles, ACubeWithoutItsTopGetsItBack) {
   // A cap triangle takes the attributes of the face across its edge (the sides, ids 4 to 11).
   for (Eigen::Index f = 10; f < 14; ++f) EXPECT_GE(capped.faceAttributes.integer.at("id")[f], 4);
   capped.validate("capped cube");
+}
+
+// Area-weighted vertex normals (mesh_measures.h) of the cube: each corner's along its diagonal, outward, of
+// unit length; a vertex no triangle uses has none.
+TEST(VertexNormals, TheCubesCornersPointAlongTheirDiagonals) {
+  TriMesh m = cube();
+  m.V.conservativeResize(9, 3);
+  m.V.row(8) << 5, 5, 5;
+  const MatrixX3d N = vertexNormals(m.V, m.F);
+  ASSERT_EQ(N.rows(), 9);
+  for (Eigen::Index v = 0; v < 8; ++v) {
+    const Eigen::RowVector3d diagonal = (m.V.row(v).array() - 0.5).matrix().normalized();
+    // A corner lies in one or two of each face's two triangles: its normal is (1 or 2, 1 or 2, 1 or 2)
+    // normalized, each component signed as the diagonal's.
+    const Eigen::Array3d size = N.row(v).cwiseAbs().transpose().array();
+    EXPECT_GT((N.row(v).array() * diagonal.array()).minCoeff(), 0.0) << "corner " << v;
+    EXPECT_LE(size.maxCoeff() / size.minCoeff(), 2.0 + 1e-12) << "corner " << v;
+    EXPECT_NEAR(N.row(v).norm(), 1.0, 1e-12);
+  }
+  EXPECT_EQ(N.row(8).norm(), 0.0);
 }
 
 // A sphere with two caps cut off (by the faces wholly beyond |z| = 0.5, as a scan's box cuts a bone): two

@@ -56,4 +56,18 @@ double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F) {
   return sixTimesVolume / 6.0;
 }
 
+MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F) {
+  MatrixX3d N = MatrixX3d::Zero(V.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a);  // twice the area times the unit normal
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
+  }
+  for (Eigen::Index v = 0; v < N.rows(); ++v) {
+    const double n = N.row(v).norm();
+    if (n > 0) N.row(v) /= n;
+  }
+  return N;
+}
+
 }  // namespace vesalius

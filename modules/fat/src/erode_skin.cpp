@@ -80,17 +80,8 @@ void averageDirections(MatrixX3d& D, const Rings& rings, const std::vector<char>
 
 // Inward unit normals: the area-weighted normals of the faces around each vertex, averaged over the 1-ring.
 MatrixX3d inwardNormals(const MatrixX3d& V, const MatrixX3i& F, const Rings& rings, int iterations) {
-  MatrixX3d N = MatrixX3d::Zero(V.rows(), 3);
-  for (Index f = 0; f < F.rows(); ++f) {
-    const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a);  // twice the area times the unit normal
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
-  }
   const double sign = enclosedVolume(V, F) < 0 ? 1.0 : -1.0;  // outward faces: inward is −n
-  for (Index v = 0; v < N.rows(); ++v) {
-    const double n = N.row(v).norm();
-    N.row(v) = n > 0 ? Eigen::RowVector3d(sign * N.row(v) / n) : Eigen::RowVector3d::Zero();
-  }
+  MatrixX3d N = sign * vertexNormals(V, F);
   std::vector<char> active(V.rows());
   for (Index v = 0; v < V.rows(); ++v) active[v] = rings.size(v) > 0;
   averageDirections(N, rings, active, iterations);

@@ -2,6 +2,7 @@
 #include "vesalius/transfer/tissues_bent_apart.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/meshing/winding_number.h"
 
 #include <Eigen/Geometry>
@@ -32,18 +33,6 @@ MatrixX3d surfacePoints(const TriMesh& mesh) {
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     P.row(r++) = (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))) / 3;
   return P;
-}
-
-// Area-weighted vertex normals, of unit length.
-MatrixX3d vertexNormals(const TriMesh& mesh) {
-  MatrixX3d N = MatrixX3d::Zero(mesh.V.rows(), 3);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) N.row(mesh.F(f, k)) += n;
-  }
-  N.rowwise().normalize();
-  return N;
 }
 
 // A bent tissue: its rows in the measured points (its vertices first, then surfacePoints' others) and its
@@ -112,7 +101,7 @@ TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<B
   std::vector<FixedTissue> fixed;
   for (std::size_t t = 0; t < tissues.size(); ++t)
     if (roles[t] == BendRole::Fixed && tissues[t].mesh.F.rows() > 0)
-      fixed.push_back({&tissues[t].mesh, boxOf(tissues[t].mesh.V), vertexNormals(tissues[t].mesh)});
+      fixed.push_back({&tissues[t].mesh, boxOf(tissues[t].mesh.V), vertexNormals(tissues[t].mesh.V, tissues[t].mesh.F)});
   std::vector<BentTissue> bent;
   MatrixX3d P(0, 3);
   for (std::size_t t = 0; t < tissues.size(); ++t) {

@@ -1,5 +1,5 @@
 // Measures of triangle surfaces used to check meshes everywhere: edge counts (is it a closed
-// 2-manifold?), connected components, triangle areas, enclosed volume.
+// 2-manifold?), connected components, triangle areas, enclosed volume, vertex normals.
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -24,5 +24,9 @@ Eigen::VectorXd triangleAreas(const MatrixX3d& V, const MatrixX3i& F);
 // a · (b × c) / 6. Positive for outward (counter-clockwise seen from outside) triangles; cavities count
 // negative. Units: those of V cubed.
 double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F);
+
+// Area-weighted vertex normals: per vertex, the sum of its triangles' (b − a) × (c − a), of unit length;
+// zero for a vertex no triangle uses. #V by 3, pointing out of counter-clockwise triangles.
+MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F);
 
 }  // namespace vesalius
