@@ -219,6 +219,10 @@ void writePatientFolder(const Image& scan, const patient::VirtualPatient& p, con
                             {"max_depth_after_mm", s.maxDepthAfter},
                             {"max_displacement_mm", s.maxDisplacement}});
   report.metric("organ_separation", separation);
+  if (!p.fits.empty())
+    report.metric("organs_off_labels", {{"points_inside_before", p.organsOffLabels.insideBefore},
+                                        {"points_inside_after", p.organsOffLabels.insideAfter},
+                                        {"largest_move_mm", p.organsOffLabels.largestMoveMm}});
   report.metric("tissues", model.tissues.size());
   report.metric("skin_vertices", model.skin.V.rows());
   report.metric("scan_skin_cut_vertices", p.anatomy.skinCutVertices.size());

@@ -122,6 +122,9 @@ TEST(BonesWarpedIntoSkin, BadInput) {
   InsideSkinWarpOptions o;
   o.radiiMm = {60.0, 0.0};
   EXPECT_THROW(warpIntoSkin(bar(0.0), sphereDistances, o), UsageError);
+  o = {};
+  o.passes = 0;
+  EXPECT_THROW(warpIntoSkin(bar(0.0), sphereDistances, o), UsageError);
 }
 
 }  // namespace

@@ -16,6 +16,12 @@ Eigen::Vector3d GridGeometry::worldToIndex(const Eigen::Vector3d& world) const {
   return (direction.inverse() * (world - origin)).cwiseQuotient(spacing);
 }
 
+bool GridGeometry::seesPoint(const Eigen::Vector3d& world) const {
+  const double tolerance = 1e-9;
+  const Eigen::Array3d index = worldToIndex(world).array();
+  return (index >= -tolerance).all() && (index <= size.cast<double>().array() - 1.0 + tolerance).all();
+}
+
 Eigen::Matrix4d GridGeometry::indexToWorldMatrix() const {
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
   m.topLeftCorner<3, 3>() = direction * spacing.asDiagonal();

@@ -81,13 +81,9 @@ MatrixX3d spreadSurfacePoints(const TriMesh& surface, int count, std::uint64_t s
 }
 
 TriMesh withinScan(const TriMesh& surface, const GridGeometry& scan) {
-  const double tolerance = 1e-9;
-  const Eigen::Array3d upper = (scan.size.cast<double>().array() - 1.0) + tolerance;
   std::vector<bool> inside(std::size_t(surface.V.rows()));
-  for (Eigen::Index v = 0; v < surface.V.rows(); ++v) {
-    const Eigen::Array3d index = scan.worldToIndex(surface.V.row(v).transpose()).array();
-    inside[std::size_t(v)] = (index >= -tolerance).all() && (index <= upper).all();
-  }
+  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+    inside[std::size_t(v)] = scan.seesPoint(surface.V.row(v).transpose());
   std::vector<int> keep;
   for (Eigen::Index f = 0; f < surface.F.rows(); ++f)
     if (inside[std::size_t(surface.F(f, 0))] && inside[std::size_t(surface.F(f, 1))] &&

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace vesalius::patient {
@@ -91,6 +92,39 @@ std::vector<OrganPairSeparation> separateOrgans(const std::vector<OrganFit*>& or
     fit.surface = tetBoundarySurface(fit.tets.V, fit.tets.T);
   }
   return pairs;
+}
+
+transfer::TissuesBentApart bendOrgansOffLabels(ReferenceAnatomy& anatomy, const std::vector<std::string>& names,
+                                               const std::vector<OrganFit*>& fits, const GridGeometry& scan,
+                                               const transfer::InsideSkinWarpOptions& options) {
+  if (names.size() != fits.size()) throw UsageError("bendOrgansOffLabels: one fit per name is needed");
+  std::vector<ReferenceTissue*> fitted;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto t = std::find_if(anatomy.tissues.begin(), anatomy.tissues.end(),
+                                [&](const ReferenceTissue& r) { return r.name == names[i]; });
+    if (t == anatomy.tissues.end() || !fits[i])
+      throw UsageError("bendOrgansOffLabels: no tissue or no fit for organ '" + names[i] + "'");
+    fitted.push_back(&*t);
+  }
+  std::vector<transfer::BendRole> roles;
+  for (const ReferenceTissue& t : anatomy.tissues)
+    roles.push_back(std::find(names.begin(), names.end(), t.name) != names.end() ? transfer::BendRole::Bent
+                                                                                : transfer::BendRole::Fixed);
+  const transfer::SkinDistanceFunction noSkin = [](const MatrixX3d& P) {
+    return transfer::SkinDistances{Eigen::VectorXd::Constant(P.rows(), -std::numeric_limits<double>::infinity()),
+                                   MatrixX3d::Zero(P.rows(), 3)};
+  };
+  transfer::TissuesBentApart bent =
+      transfer::bendTissuesApart(anatomy, roles, noSkin, options, {transfer::Straddle::Dent, &scan});
+  if (bent.bend.centres.empty()) return bent;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    OrganFit& fit = *fits[i];
+    fit.tets.V = bent.bend.apply(fit.tets.V);
+    fit.surface = tetBoundarySurface(fit.tets.V, fit.tets.T);
+    fit.carriedTemplate.V = bent.bend.apply(fit.carriedTemplate.V);
+    fitted[i]->mesh = fit.surface;
+  }
+  return bent;
 }
 
 }  // namespace vesalius::patient

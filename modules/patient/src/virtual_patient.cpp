@@ -141,6 +141,7 @@ std::vector<std::pair<std::string, double>> virtualPatientStages(const LabelMap*
   const std::vector<const OrganTemplate*> fitted = templatesToFit(organs, templates);
   for (const OrganTemplate* t : fitted) stages.emplace_back("fit " + t->organ, 35);
   if (fitted.size() > 1) stages.emplace_back("organ separation", 5);
+  if (!fitted.empty()) stages.emplace_back("organs off labels", 13);
   if (withReference)
     stages.insert(stages.end(), {{"reference completion", 45}, {"whole model", 15}, {"anatomy rules", 3}});
   if (noRigBecause(organs, options, withReference).empty()) stages.emplace_back("rig", 16);
@@ -222,6 +223,15 @@ VirtualPatient buildVirtualPatient(const Image& scan, const LabelMap* organs, co
   for (const FittedOrgan& f : patient.fits)
     for (ReferenceTissue& r : patient.anatomy.tissues)
       if (r.name == f.organ) r.mesh = f.fit.surface;
+  if (!patient.fits.empty()) {
+    stages.begin("organs off labels", "fitted organs bent out of the other labels' tissues");
+    std::vector<std::string> names;
+    std::vector<OrganFit*> fitted;
+    for (FittedOrgan& f : patient.fits) names.push_back(f.organ), fitted.push_back(&f.fit);
+    patient.organsOffLabels =
+        bendOrgansOffLabels(patient.anatomy, names, fitted, organs->labels.geometry, options.organsOffLabels);
+    stages.end("organs off labels");
+  }
   patient.anatomy.validate(scanSource);
 
   if (options.fullBodyReference) {

@@ -97,12 +97,14 @@ InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin
   if (wantedDepth.size() != V.rows() || !std::all_of(wantedDepth.begin(), wantedDepth.end(), allowed))
     throw UsageError("warpIntoSkin: a wanted depth per vertex, at most 0 or +infinity, is needed");
   const auto positive = [](double R) { return R > 0; };
-  if (!(options.marginMm >= 0 && options.rounds >= 0 && std::all_of(options.radiiMm.begin(), options.radiiMm.end(), positive)))
+  if (!(options.marginMm >= 0 && options.rounds >= 0 && options.passes >= 1 &&
+        std::all_of(options.radiiMm.begin(), options.radiiMm.end(), positive)))
     throw UsageError("warpIntoSkin: options out of range");
   InsideSkinWarp warp;
   MatrixX3d X = V;
   warp.outsideBefore = warp.outsideAfter = long(outsideRows(skin(X), wantedDepth).size());
-  for (const double R : options.radiiMm) addStage(X, warp.outsideAfter, skin, wantedDepth, R, options.rounds, warp);
+  for (int pass = 0; pass < options.passes && warp.outsideAfter > 0; ++pass)
+    for (const double R : options.radiiMm) addStage(X, warp.outsideAfter, skin, wantedDepth, R, options.rounds, warp);
   warp.largestMoveMm = (X - V).rowwise().norm().maxCoeff();
   return warp;
 }

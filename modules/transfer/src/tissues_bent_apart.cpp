@@ -52,13 +52,14 @@ struct FixedTissue {
 // The distances warpIntoSkin takes (the header's three cases, the largest), the skin's signed distance
 // where none applies.
 SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std::vector<BentTissue>& bent,
-                                const SkinDistanceFunction& skin) {
+                                const SkinDistanceFunction& skin, const StraddleOptions& straddle) {
   const auto deepen = [](SkinDistances& d, Eigen::Index r, double depth, const Eigen::RowVector3d& outward) {
     if (depth <= d.distance[r]) return;
     d.distance[r] = depth;
     d.outward.row(r) = outward;
   };
-  return [fixed, bent, skin, deepen](const MatrixX3d& P) {
+  const auto counts = [fov = straddle.fieldOfView](const Eigen::Vector3d& p) { return !fov || fov->seesPoint(p); };
+  return [fixed, bent, skin, deepen, rule = straddle.rule, counts](const MatrixX3d& P) {
     SkinDistances d = skin(P);
     for (const FixedTissue& f : fixed) {
       std::vector<Eigen::Index> rows;
@@ -78,13 +79,20 @@ SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std
         if (!f.box.intersects(box)) continue;
         std::vector<Eigen::Index> rows;
         for (Eigen::Index v = 0; v < f.mesh->V.rows(); ++v)
-          if (box.contains(f.mesh->V.row(v).transpose())) rows.push_back(v);
+          if (box.contains(f.mesh->V.row(v).transpose()) && counts(f.mesh->V.row(v).transpose())) rows.push_back(v);
         if (rows.empty()) continue;
         for (const meshing::PointInside& in : meshing::pointsInside(V, *t.F, MatrixX3d(f.mesh->V(rows, Eigen::all)))) {
           const Eigen::Index v = rows[std::size_t(in.row)];
           Eigen::Index nearest = 0;
-          (P.middleRows(t.first, t.rows).rowwise() - f.mesh->V.row(v)).rowwise().squaredNorm().minCoeff(&nearest);
-          deepen(d, t.first + nearest, std::sqrt(in.closest.squaredDistance), -f.normals.row(v));
+          if (rule == Straddle::MoveOff) {
+            (P.middleRows(t.first, t.rows).rowwise() - f.mesh->V.row(v)).rowwise().squaredNorm().minCoeff(&nearest);
+            deepen(d, t.first + nearest, std::sqrt(in.closest.squaredDistance), -f.normals.row(v));
+          } else {
+            const Eigen::RowVector3d closest = in.closest.point.transpose(), outward = closest - f.mesh->V.row(v);
+            if (outward.norm() < 1e-9) continue;
+            (P.middleRows(t.first, t.rows).rowwise() - closest).rowwise().squaredNorm().minCoeff(&nearest);
+            deepen(d, t.first + nearest, outward.norm(), outward.normalized());
+          }
         }
       }
     }
@@ -95,7 +103,8 @@ SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std
 }  // namespace
 
 TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<BendRole>& roles,
-                                  const SkinDistanceFunction& skin, const InsideSkinWarpOptions& options) {
+                                  const SkinDistanceFunction& skin, const InsideSkinWarpOptions& options,
+                                  const StraddleOptions& straddle) {
   std::vector<ReferenceTissue>& tissues = anatomy.tissues;
   if (roles.size() != tissues.size()) throw UsageError("bendTissuesApart: one role per tissue is needed");
   std::vector<FixedTissue> fixed;
@@ -116,7 +125,8 @@ TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<B
   }
   TissuesBentApart result;
   if (P.rows() == 0 || options.rounds == 0) return result;
-  const InsideSkinWarp bend = warpIntoSkin(P, reachingIn(fixed, bent, skin), options);
+  result.bend = warpIntoSkin(P, reachingIn(fixed, bent, skin, straddle), options);
+  const InsideSkinWarp& bend = result.bend;
   result.insideBefore = bend.outsideBefore;
   result.insideAfter = bend.outsideAfter;
   result.largestMoveMm = bend.largestMoveMm;

@@ -28,6 +28,10 @@ struct GridGeometry {
   // index · spacing · direction + origin, for integer or continuous indices.
   Eigen::Vector3d indexToWorld(const Eigen::Vector3d& index) const;
   Eigen::Vector3d worldToIndex(const Eigen::Vector3d& world) const;
+  // Whether a world point lies within the box of the voxel centres (continuous index in [0, size - 1] along
+  // each axis, to 1e-9 voxel): where the scan has seen. A label cut by the scan's edge is closed half a
+  // voxel beyond it.
+  bool seesPoint(const Eigen::Vector3d& world) const;
   // 4x4 homogeneous version of indexToWorld.
   Eigen::Matrix4d indexToWorldMatrix() const;
 

@@ -15,10 +15,13 @@
 // one organ may still cross an edge of the other by less than an edge's sag.
 #pragma once
 
+#include "vesalius/core/anatomy.h"
 #include "vesalius/fit/interpenetration.h"
 #include "vesalius/patient/organ_fit.h"
+#include "vesalius/transfer/tissues_bent_apart.h"
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace vesalius::patient {
@@ -43,5 +46,25 @@ struct OrganPairSeparation {
 // has moved).
 std::vector<OrganPairSeparation> separateOrgans(const std::vector<OrganFit*>& organs,
                                                 const OrganSeparationOptions& options = {});
+
+// The fitted organs bent out of the tissues of the organ map's other labels, which do not move. A template
+// fitted to markers on its own label follows that label between the markers only as far as its shape allows:
+// where a neighbour presses a notch into the organ that the template lacks (the colon and the caval and
+// portal veins against a liver template without their grooves) the fitted surface crosses into the
+// neighbour's label by several millimetres. The bend is transfer::bendTissuesApart's (Dicko et al. 2013's
+// rule that tissues do not interpenetrate; not in Wang et al. 2021, whose organs are fitted alone and
+// separated from each other only): smooth and local, the fitted tissues the only ones that move, ending
+// options.marginMm apart. Where a label's tissue lies inside a fitted organ (a vessel in the groove the
+// template lacks) the organ is dented inward where its surface is nearest (transfer::Straddle::Dent). Where the scan cuts
+// a label the cap that closes its tissue is the scan's edge, not tissue: no obstacle to an organ that goes
+// on beyond the scan. Nor is the scan's skin a bound here: it is closed across the same cut.
+//
+// anatomy: the scan's anatomy, the tissue named names[i] holding fits[i]'s surface; every other tissue with
+// triangles is fixed. scan: the grid of the labels. The fits' tets, surfaces and carried templates move
+// with the bend, and their tissues take the moved surfaces. Throws UsageError for lists of different
+// lengths, a null fit or a name that is no tissue of the anatomy.
+transfer::TissuesBentApart bendOrgansOffLabels(ReferenceAnatomy& anatomy, const std::vector<std::string>& names,
+                                               const std::vector<OrganFit*>& fits, const GridGeometry& scan,
+                                               const transfer::InsideSkinWarpOptions& options);
 
 }  // namespace vesalius::patient

@@ -9,7 +9,8 @@
 //  3. the anatomy inside the field of view: with an organ/bone label map, each label as a closed tissue
 //     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
 //     template fitted by plastic strains to markers on its label (Wang et al. 2021; organ_fit.h), the fitted
-//     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h). Without one, a
+//     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h) and bent out of the
+//     other labels' tissues (bendOrgansOffLabels, Dicko et al. 2013's rule of no interpenetration). Without one, a
 //     CT's own bone class as one bone tissue (an MRI's dark class is not bone alone: the skin only).
 //  4. beyond the field of view: given the full-body reference, the reference completed into the patient's
 //     partial skin and transferred into it (reference_completion.h; Dicko et al. 2013): a whole body around the scan.
@@ -55,6 +56,10 @@ struct VirtualPatientOptions {
   ScanAnatomyOptions surfaces;  // its modality also picks the tissue classification (CT or MRI)
   OrganFitOptions organFit;
   OrganSeparationOptions organSeparation;
+  // The fitted organs bent out of the other labels' tissues (bendOrgansOffLabels): how far apart they should
+  // end, and the bend's reaches (an organ's notch, then a vessel's groove), up to three passes. Rounds 0: no
+  // bend.
+  transfer::InsideSkinWarpOptions organsOffLabels = offLabelsBend();
   bool rig = true;  // rig the whole model, or without the reference the scan when the organ map has its bones
   PatientRigOptions rigging;
   // The full-body reference (full_body_reference.h) to complete into the patient beyond the field of view;
@@ -64,6 +69,14 @@ struct VirtualPatientOptions {
   // The whole model (whole_model.h); its groupLabels also name the labels the transfer's per-bone
   // registration places each reference bone group on (Dicko et al. 2013, §8).
   WholeModelOptions whole;
+
+  static transfer::InsideSkinWarpOptions offLabelsBend() {
+    transfer::InsideSkinWarpOptions o;
+    o.marginMm = 0.5;
+    o.radiiMm = {30.0, 10.0};
+    o.passes = 3;
+    return o;
+  }
 };
 
 struct FittedOrgan {
@@ -81,6 +94,7 @@ struct VirtualPatient {
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<FittedOrgan> fits;
   std::vector<OrganPairSeparation> organSeparation;  // indices into fits; every pair, touching or not
+  transfer::TissuesBentApart organsOffLabels;        // the fits bent out of the other labels' tissues
   std::optional<ReferenceCompletion> completion;  // with options.fullBodyReference
   std::optional<WholeModel> whole;                // with the completion: the whole model
   std::optional<transfer::AnatomyRules> rules;    // Dicko et al.'s rules on the whole model (anatomy_rules.h)

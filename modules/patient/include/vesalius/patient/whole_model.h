@@ -70,7 +70,7 @@ struct WholeModelOptions {
   // group's map keeps them where the muscles and the bones beyond the scan were carried.
   BoneOntoLabelOptions bones = placedBones();
   // The bend of the reference's tissues out of the patient's: how far apart they should end, and its
-  // reaches (a rib's, then a patella's). Rounds 0: no bend.
+  // reaches (a rib's, then a patella's), up to three passes. Rounds 0: no bend.
   transfer::InsideSkinWarpOptions apart = apartBend();
 
   static BoneOntoLabelOptions placedBones() {
@@ -81,6 +81,7 @@ struct WholeModelOptions {
   static transfer::InsideSkinWarpOptions apartBend() {
     transfer::InsideSkinWarpOptions o;
     o.marginMm = 0.5;
+    o.passes = 3;
     return o;
   }
 };

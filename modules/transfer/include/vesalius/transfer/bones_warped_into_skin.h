@@ -35,6 +35,9 @@ struct InsideSkinWarpOptions {
   // to fine
   std::vector<double> radiiMm{60.0, 15.0};
   int rounds = 20;  // at most, per stage (each round measures the distances once)
+  // The stages again, from where the last left off, while vertices are still outside: a vertex pushed out
+  // of one side into another at a fine reach is taken up at the coarse reach again.
+  int passes = 1;
 };
 
 // The displacement, one round after another; apply() carries any point (a bone's vertices, the points
