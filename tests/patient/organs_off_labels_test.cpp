@@ -6,31 +6,20 @@
 // other (where the scan has the label), the label's tissue does not move, the organ moves only within the
 // bend's reach of the contact, its tets stay positive and its tets, surface, carried template and tissue
 // move together.
+#include "deepest_inside.h"
 #include "test_shapes.h"
 #include "test_tets.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/meshing/winding_number.h"
 #include "vesalius/patient/organ_separation.h"
 #include "vesalius/patient/virtual_patient.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
 
 namespace vesalius::test {
 namespace {
-
-// The deepest vertex of either mesh inside the other (0: apart), mm.
-double deepestEitherWay(const TriMesh& a, const TriMesh& b) {
-  double deepest = 0;
-  for (const meshing::PointInside& in : meshing::pointsInside(a.V, a.F, b.V))
-    deepest = std::max(deepest, std::sqrt(in.closest.squaredDistance));
-  for (const meshing::PointInside& in : meshing::pointsInside(b.V, b.F, a.V))
-    deepest = std::max(deepest, std::sqrt(in.closest.squaredDistance));
-  return deepest;
-}
 
 // The virtual patient's bend.
 transfer::InsideSkinWarpOptions offLabels() { return patient::VirtualPatientOptions::offLabelsBend(); }

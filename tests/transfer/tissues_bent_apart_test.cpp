@@ -4,8 +4,8 @@
 #include "vesalius/transfer/tissues_bent_apart.h"
 
 #include "vesalius/core/error.h"
-#include "vesalius/meshing/winding_number.h"
 
+#include "deepest_inside.h"
 #include "test_shapes.h"
 
 #include <gtest/gtest.h>
@@ -15,20 +15,12 @@
 namespace vesalius::transfer {
 namespace {
 
+using test::deepestEitherWay;
+
 constexpr double kSkinRadius = 100.0;
 
 SkinDistances sphereSkin(const MatrixX3d& P) {
   return {P.rowwise().norm().array() - kSkinRadius, P.rowwise().normalized()};
-}
-
-// The deepest vertex of either mesh inside the other (0: apart), mm.
-double deepestEitherWay(const TriMesh& a, const TriMesh& b) {
-  double deepest = 0;
-  for (const meshing::PointInside& in : meshing::pointsInside(a.V, a.F, b.V))
-    deepest = std::max(deepest, std::sqrt(in.closest.squaredDistance));
-  for (const meshing::PointInside& in : meshing::pointsInside(b.V, b.F, a.V))
-    deepest = std::max(deepest, std::sqrt(in.closest.squaredDistance));
-  return deepest;
 }
 
 ReferenceAnatomy anatomyOf(const std::vector<std::pair<std::string, TriMesh>>& tissues) {
