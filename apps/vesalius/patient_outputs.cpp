@@ -219,6 +219,11 @@ void writePatientFolder(const Image& scan, const patient::VirtualPatient& p, con
                             {"max_depth_after_mm", s.maxDepthAfter},
                             {"max_displacement_mm", s.maxDisplacement}});
   report.metric("organ_separation", separation);
+  report.metric("labels_apart", {{"vertices_inside_before", p.labelsApart.insideBefore},
+                                 {"vertices_inside_after", p.labelsApart.insideAfter},
+                                 {"deepest_before_mm", p.labelsApart.deepestBeforeMm},
+                                 {"deepest_after_mm", p.labelsApart.deepestAfterMm},
+                                 {"largest_move_mm", p.labelsApart.largestMoveMm}});
   if (!p.fits.empty())
     report.metric("organs_off_labels", {{"points_inside_before", p.organsOffLabels.insideBefore},
                                         {"points_inside_after", p.organsOffLabels.insideAfter},

@@ -109,6 +109,25 @@ TEST(BonesWarpedIntoSkin, TwoToesArePartedByTheShorterReach) {
   EXPECT_LT(toe.largestMoveMm, 6.0);  // from the cleft's middle to the margin inside a toe: 2.5 mm at least
 }
 
+// A lone vertex far out, with rounds too few to bring it in: each round moves it half its way to the
+// margin (λ = 1, φ(0) = 1), d → (d − m) / 2, and rounds that leave it nearer are kept though the count of
+// vertices outside stays 1.
+TEST(BonesWarpedIntoSkin, RoundsThatBringTheLastVertexNearerAreKept) {
+  const MatrixX3d V = Eigen::RowVector3d(0, 0, kRadius + 20.0);
+  InsideSkinWarpOptions o;
+  o.radiiMm = {60.0};
+  o.rounds = 2;
+  const InsideSkinWarp warp = warpIntoSkin(V, sphereDistances, o);
+  const double after = sphereDistances(warp.apply(V)).distance[0];
+  const double expected = ((20.0 - o.marginMm) / 2 - o.marginMm) / 2;
+  std::printf("20 mm out, after two rounds %.4f mm out (expected %.4f), %zu rounds kept\n", after, expected,
+              warp.centres.size());
+  EXPECT_EQ(warp.outsideAfter, 1);
+  EXPECT_EQ(warp.centres.size(), 2u);
+  EXPECT_NEAR(after, expected, 1e-9);
+  EXPECT_NEAR(warp.largestMoveMm, 20.0 - expected, 1e-9);
+}
+
 TEST(BonesWarpedIntoSkin, ABoneInsideIsNotMoved) {
   const MatrixX3d V = bar(-50.0);
   const InsideSkinWarp warp = warpIntoSkin(V, sphereDistances);

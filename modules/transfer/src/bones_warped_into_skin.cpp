@@ -67,21 +67,36 @@ MatrixX3d InsideSkinWarp::apply(const MatrixX3d& P) const {
 
 namespace {
 
-// Up to `rounds` rounds at reach R from X (the warp so far, `outside` of its rows still outside), the
-// rounds up to the one that left the fewest outside kept: where a vertex sits between two sides of the
-// skin (between toes), pushing it out of one side can push it or its neighbours out of the other, and
-// later rounds undo earlier gains. X and `outside` become the kept rounds' result.
-void addStage(MatrixX3d& X, long& outside, const SkinDistanceFunction& skin, const Eigen::VectorXd& wanted, double R,
+// What is left outside: the rows (outsideRows) and the sum of how far each is from its wanted depth.
+// Fewer rows are better, and as many rows less far: the last vertex wedged between two sides, moved a
+// little further each round, is progress too.
+struct Left {
+  long rows = 0;
+  double excessMm = 0;
+  bool operator<(const Left& o) const { return rows < o.rows || (rows == o.rows && excessMm < o.excessMm); }
+};
+
+Left leftOutside(const SkinDistances& d, const Eigen::VectorXd& wanted) {
+  Left left;
+  for (const Eigen::Index i : outsideRows(d, wanted)) ++left.rows, left.excessMm += d.distance[i] - wanted[i];
+  return left;
+}
+
+// Up to `rounds` rounds at reach R from X (the warp so far, `left` outside of it), the rounds up to the
+// one that left the least outside kept: where a vertex sits between two sides of the skin (between toes),
+// pushing it out of one side can push it or its neighbours out of the other, and later rounds undo
+// earlier gains. X and `left` become the kept rounds' result.
+void addStage(MatrixX3d& X, Left& left, const SkinDistanceFunction& skin, const Eigen::VectorXd& wanted, double R,
               int rounds, InsideSkinWarp& warp) {
   MatrixX3d Y = X;
   SkinDistances d = skin(Y);
   std::size_t kept = warp.centres.size();
-  for (int round = 0; round < rounds && outside > 0; ++round) {
+  for (int round = 0; round < rounds && left.rows > 0; ++round) {
     addRound(Y, d, wanted, R, warp);
     Y += kernelSum(Y, warp.centres.back(), warp.coefficients.back(), R);
     d = skin(Y);
-    const long left = long(outsideRows(d, wanted).size());
-    if (left < outside) outside = left, kept = warp.centres.size(), X = Y;
+    const Left now = leftOutside(d, wanted);
+    if (now < left) left = now, kept = warp.centres.size(), X = Y;
   }
   warp.radiiMm.resize(kept);
   warp.centres.resize(kept);
@@ -102,9 +117,11 @@ InsideSkinWarp warpIntoSkin(const MatrixX3d& V, const SkinDistanceFunction& skin
     throw UsageError("warpIntoSkin: options out of range");
   InsideSkinWarp warp;
   MatrixX3d X = V;
-  warp.outsideBefore = warp.outsideAfter = long(outsideRows(skin(X), wantedDepth).size());
-  for (int pass = 0; pass < options.passes && warp.outsideAfter > 0; ++pass)
-    for (const double R : options.radiiMm) addStage(X, warp.outsideAfter, skin, wantedDepth, R, options.rounds, warp);
+  Left left = leftOutside(skin(X), wantedDepth);
+  warp.outsideBefore = left.rows;
+  for (int pass = 0; pass < options.passes && left.rows > 0; ++pass)
+    for (const double R : options.radiiMm) addStage(X, left, skin, wantedDepth, R, options.rounds, warp);
+  warp.outsideAfter = left.rows;
   warp.largestMoveMm = (X - V).rowwise().norm().maxCoeff();
   return warp;
 }

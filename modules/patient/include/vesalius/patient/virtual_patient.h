@@ -7,7 +7,8 @@
 //     scan's skin and subcutaneous fat classes (Dicko et al. 2013, §5; fat/fat_forest.h, fat/thickness_at_vertices.h);
 //     0 on the cut, which is not skin.
 //  3. the anatomy inside the field of view: with an organ/bone label map, each label as a closed tissue
-//     surface of its kind (scan_anatomy.h), and each organ with a template in `templates` replaced by that
+//     surface of its kind (scan_anatomy.h), the surfaces moved apart where they cross
+//     (meshing/label_surfaces_apart.h), and each organ with a template in `templates` replaced by that
 //     template fitted by plastic strains to markers on its label (Wang et al. 2021; organ_fit.h), the fitted
 //     organs pushed apart where they touch (Wang et al. 2021, §4.1.4; organ_separation.h) and bent out of the
 //     other labels' tissues (bendOrgansOffLabels, Dicko et al. 2013's rule of no interpenetration). Without one, a
@@ -27,6 +28,7 @@
 #include "vesalius/core/grid.h"
 #include "vesalius/core/label_map.h"
 #include "vesalius/core/progress.h"
+#include "vesalius/meshing/label_surfaces_apart.h"
 #include "vesalius/patient/organ_fit.h"
 #include "vesalius/patient/organ_separation.h"
 #include "vesalius/patient/patient_rig.h"
@@ -55,6 +57,7 @@ struct OrganTemplate {
 struct VirtualPatientOptions {
   ScanAnatomyOptions surfaces;  // its modality also picks the tissue classification (CT or MRI)
   OrganFitOptions organFit;
+  meshing::LabelSurfacesApartOptions labelsApart;  // the labels' tissues moved apart where they cross
   OrganSeparationOptions organSeparation;
   // The fitted organs bent out of the other labels' tissues (bendOrgansOffLabels): how far apart they should
   // end, and the bend's reaches (an organ's notch, then a vessel's groove), up to three passes. Rounds 0: no
@@ -92,6 +95,7 @@ struct VirtualPatient {
   // Each label name of the organ map the model represents, and the tissues (names in anatomy.tissues)
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
+  meshing::LabelSurfacesApart labelsApart;  // the labels' tissues moved apart where they cross
   std::vector<FittedOrgan> fits;
   std::vector<OrganPairSeparation> organSeparation;  // indices into fits; every pair, touching or not
   transfer::TissuesBentApart organsOffLabels;        // the fits bent out of the other labels' tissues

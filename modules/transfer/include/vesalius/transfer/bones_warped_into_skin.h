@@ -13,8 +13,10 @@
 // takes c from (Φ + λ I) c = δ over those vertices (λ = 1: a lone vertex moves half its way in one round,
 // a cluster nearly all of it; no overshoot between close centres, as exact interpolation would have). The
 // rounds compose until no vertex is outside or `rounds` is reached, and the rounds up to the one that
-// left the fewest outside are kept (between two sides of the skin, as between toes, later rounds can
-// undo earlier gains). Then the same at a shorter reach from where that left the bones: a bend as long
+// left the least outside are kept: the fewest vertices, and of as many the smallest sum of their
+// distances from the depth wanted (between two sides of the skin, as between toes, later rounds can undo
+// earlier gains; a last vertex wedged between two tissues comes out by steps that leave the count as it
+// is). Then the same at a shorter reach from where that left the bones: a bend as long
 // as a limb bone cannot tell the two sides of a toe apart, one as long as a toe can (MakeHuman's toes
 // are apart where Rajagopal's five toes are one mesh). u is smooth (C²) and fades to nothing at R from
 // every vertex that was outside, so a bone is bent, not dented, and its far parts stay.
