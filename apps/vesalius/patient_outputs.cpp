@@ -51,6 +51,16 @@ MarkerSet icpMarkers(const patient::FittedOrgan& f) {
   return set;
 }
 
+// Surfaces moved apart where they crossed: vertices inside another before and after, the deepest, the
+// largest move.
+nlohmann::json apartReport(const meshing::LabelSurfacesApart& a) {
+  return {{"vertices_inside_before", a.insideBefore},
+          {"vertices_inside_after", a.insideAfter},
+          {"deepest_before_mm", a.deepestBeforeMm},
+          {"deepest_after_mm", a.deepestAfterMm},
+          {"largest_move_mm", a.largestMoveMm}};
+}
+
 void renderPng(const ReferenceAnatomy& anatomy, const std::string& path) {
   std::vector<viz::SurfaceLayer> layers;
   for (const ReferenceTissue& t : anatomy.tissues) layers.push_back({&t.mesh, tissueKindColour(t.kind), 1.0});
@@ -140,6 +150,7 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                                {"scan_skin_to_completed_max_mm", c.registration.skinMaxDistance},
                                {"bone_groups_on_labels", groups},
                                {"bones_on_labels", bones},
+                               {"bones_on_labels_apart", apartReport(whole.bonesApart)},
                                {"tissue_vertices_bent_into_skin", c.outsideBefore},
                                {"tissue_vertices_left_outside_skin", c.outsideAfter},
                                {"into_skin_largest_move_mm", c.bendLargestMm},
@@ -219,11 +230,7 @@ void writePatientFolder(const Image& scan, const patient::VirtualPatient& p, con
                             {"max_depth_after_mm", s.maxDepthAfter},
                             {"max_displacement_mm", s.maxDisplacement}});
   report.metric("organ_separation", separation);
-  report.metric("labels_apart", {{"vertices_inside_before", p.labelsApart.insideBefore},
-                                 {"vertices_inside_after", p.labelsApart.insideAfter},
-                                 {"deepest_before_mm", p.labelsApart.deepestBeforeMm},
-                                 {"deepest_after_mm", p.labelsApart.deepestAfterMm},
-                                 {"largest_move_mm", p.labelsApart.largestMoveMm}});
+  report.metric("labels_apart", apartReport(p.labelsApart));
   if (!p.fits.empty())
     report.metric("organs_off_labels", {{"points_inside_before", p.organsOffLabels.insideBefore},
                                         {"points_inside_after", p.organsOffLabels.insideAfter},

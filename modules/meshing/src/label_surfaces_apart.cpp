@@ -57,7 +57,7 @@ Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std:
 
 }  // namespace
 
-LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces, const GridGeometry& scan,
+LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces, const GridGeometry* fieldOfView,
                                           const LabelSurfacesApartOptions& options) {
   if (!(options.marginMm >= 0 && options.rounds >= 0))
     throw UsageError("moveLabelSurfacesApart: options out of range");
@@ -66,7 +66,8 @@ LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces,
   for (const TriMesh* s : surfaces) {
     if (!s) throw UsageError("moveLabelSurfacesApart: a surface is null");
     std::vector<bool> sees(std::size_t(s->V.rows()));
-    for (Eigen::Index v = 0; v < s->V.rows(); ++v) sees[std::size_t(v)] = scan.seesPoint(s->V.row(v).transpose());
+    for (Eigen::Index v = 0; v < s->V.rows(); ++v)
+      sees[std::size_t(v)] = !fieldOfView || fieldOfView->seesPoint(s->V.row(v).transpose());
     seen.push_back(std::move(sees));
     start.push_back(s->V);
   }

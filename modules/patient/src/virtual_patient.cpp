@@ -195,7 +195,7 @@ VirtualPatient buildVirtualPatient(const Image& scan, const LabelMap* organs, co
     if (patient.anatomy.tissues.empty()) throw BadInput(organsSource, "no label of its table has voxels");
     std::vector<TriMesh*> surfaces;
     for (ReferenceTissue& t : patient.anatomy.tissues) surfaces.push_back(&t.mesh);
-    patient.labelsApart = meshing::moveLabelSurfacesApart(surfaces, organs->labels.geometry, options.labelsApart);
+    patient.labelsApart = meshing::moveLabelSurfacesApart(surfaces, &organs->labels.geometry, options.labelsApart);
   } else {
     patient.anatomy = classAnatomy(scan, patient.tissueClasses, options.surfaces, scanSource);
   }

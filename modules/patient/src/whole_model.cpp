@@ -94,6 +94,9 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
     patientTissues.push_back(tissueName);
     model.bones.push_back(std::move(bone));
   }
+  std::vector<TriMesh*> onLabels;
+  for (const RegisteredBone& bone : model.bones) onLabels.push_back(&named(bone.tissue)->mesh);
+  model.bonesApart = meshing::moveLabelSurfacesApart(onLabels, nullptr);
   for (const auto& [tissueName, label] : options.replacedInsideScan) {
     const auto t = named(tissueName);
     if (t == tissues.end() || !hasLabel(*organs, present, label)) continue;

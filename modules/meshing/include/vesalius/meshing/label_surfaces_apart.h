@@ -6,8 +6,9 @@
 // surface inside another (winding number at least 1/2) moves out of it towards the other's closest point,
 // by half its depth and half the margin, and the other's vertices inside the first likewise, all at once,
 // in rounds until none is inside or the rounds run out. A vertex inside several surfaces takes its largest
-// move. Vertices the scan does not see (GridGeometry::seesPoint: the caps where the scan cut a label) stay
-// on the scan's edge. Not in the papers: Dicko et al. 2013's rule that no two tissues interpenetrate, for
+// move. With a field of view (the label map's grid), vertices the scan does not see (GridGeometry::seesPoint:
+// the caps where the scan cut a label) stay on the scan's edge; without one, as for bones brought onto
+// labels that go on beyond the scan, every vertex counts and may move. Not in the papers: Dicko et al. 2013's rule that no two tissues interpenetrate, for
 // tissues made from one label map (sharedLabelSurfaces shares their boundaries exactly, but undecimated).
 #pragma once
 
@@ -24,15 +25,15 @@ struct LabelSurfacesApartOptions {
 };
 
 struct LabelSurfacesApart {
-  long insideBefore = 0, insideAfter = 0;          // vertices of a surface inside another that the scan sees
+  long insideBefore = 0, insideAfter = 0;          // vertices of a surface inside another (that the scan sees)
   double deepestBeforeMm = 0, deepestAfterMm = 0;  // the deepest of them
   double largestMoveMm = 0;                        // the largest move of a vertex over all rounds
   int rounds = 0;                                  // rounds that moved vertices
 };
 
-// surfaces: closed label surfaces in world mm (labelSurface's), moved in place; scan: the label map's grid.
-// Throws UsageError for a null surface or options out of range.
-LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces, const GridGeometry& scan,
+// surfaces: closed surfaces in world mm (labelSurface's), moved in place; fieldOfView: the label map's grid,
+// or null (above). Throws UsageError for a null surface or options out of range.
+LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces, const GridGeometry* fieldOfView,
                                           const LabelSurfacesApartOptions& options = {});
 
 }  // namespace vesalius::meshing

@@ -4,7 +4,10 @@
 //    bones, the femurs) keeps its mesh and its name and is brought onto that label
 //    (bone_onto_label.h). Its group was already placed on the labels by the transfer's per-bone
 //    registration (transfer::AnatomyTransferOptions::boneTargets), so the muscles and the bones beyond
-//    the field of view follow it; here the mesh takes the label's shape.
+//    the field of view follow it; here the mesh takes the label's shape. Bones on labels that share voxel
+//    faces (the hip bones at the symphysis, a femoral head in its acetabulum) each take their own label's
+//    boundary, and where those cross they are moved apart (meshing/label_surfaces_apart.h), as the labels'
+//    own surfaces are.
 //  - Reference bones that labels show bone by bone: OpenSim gives the spine, the rib cage with the
 //    scapulae and the skull as one mesh each, where the organ map has a label per vertebra and per rib.
 //    Inside the field of view the labels' surfaces take their place: the reference mesh keeps only its
@@ -22,6 +25,7 @@
 
 #include "vesalius/core/anatomy.h"
 #include "vesalius/core/label_map.h"
+#include "vesalius/meshing/label_surfaces_apart.h"
 #include "vesalius/patient/bone_onto_label.h"
 #include "vesalius/transfer/tissues_bent_apart.h"
 
@@ -97,6 +101,7 @@ struct WholeModel {
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<RegisteredBone> bones;
+  meshing::LabelSurfacesApart bonesApart;  // the bones on labels moved apart where they cross
   // Each reference tissue that the labels replaced inside the scan, and how many of its faces went (a
   // tissue whose faces all went is gone from the model).
   std::vector<std::pair<std::string, long>> replacedFaces;
