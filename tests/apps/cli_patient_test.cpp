@@ -533,8 +533,8 @@ TEST(CliPatient, BadInputsAreOneLineAndLeaveNoFolder) {
   expectRefused({"patient", "--scan", kCtScan, "--pose", "upperleg01.L=-30,0,0", "--out", out, "--progress", "none"},
                 2, "upperleg01.L", out);
   // A rig target below what the whole model's 14 bones allow (rigging::checkRigTargetTets), before any work.
-  expectRefused({"patient", "--scan", kCtScan, "--rig-tets", "6799", "--out", out, "--progress", "none"}, 2,
-                "ask for at least 6800", out);
+  expectRefused({"patient", "--scan", kCtScan, "--rig-tets", "8199", "--out", out, "--progress", "none"}, 2,
+                "ask for at least 8200", out);
   // An output folder that holds an input is never replaced, --force or not, and is refused before any work.
   const std::string holding = fresh("holding_input");
   fs::create_directories(holding);

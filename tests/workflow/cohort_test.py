@@ -27,7 +27,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # The fastest patient: no full-body reference, coarse organ fits, a coarse rig.
-PATIENT_OPTIONS = "patient_options=[--no-reference, --markers, 60, --organ-tets, 500, --refits, 0, --rig-tets, 4000]"
+PATIENT_OPTIONS = "patient_options=[--no-reference, --markers, 60, --organ-tets, 500, --refits, 0, --rig-tets, 5000]"
 # One core per scan: two scans at a time on two cores (the pipeline is partly serial).
 CONFIG = ["--config", PATIENT_OPTIONS, "patient_mem_mb=3000", "patient_threads=1", "patient_runtime_min=20"]
 SCANS = {"ct", "ct-cropflip", "dicom-ct", "mr-abdomen", "broken"}

@@ -251,19 +251,28 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
   }
   LabelRegionOptions regions = rigRegionOptions(solidBody);
   regions.body = body;
-  // A coarse body surface can cut a bone a voxel below it (the test CT's body at 3,562 faces crossed
-  // hip_right at 10 triangle pairs; an MRI's whole model at 2,000 tets crossed its torso bones at 40):
-  // finer budgets then, and TetGen names the crossing if they stay.
+  // Coarse bones can cross each other or a coarse body a voxel above them (the test CT's hip bones at
+  // 110-170 faces; an MRI's whole model at 2,000 tets crossed its torso bones at 40): finer budgets then,
+  // and TetGen names the crossing if it stays. A solid body grows its budget only from the third try: its
+  // bones have a few hundred faces where it has thousands (growing both took the test CT's rig at 4,000
+  // tets to a body of 1,686 faces and 10,502 tets). A skin grows with its bones: quadric decimation tears
+  // a MakeHuman skin at 8 mm below about 4,500 faces and its fallback stops at 11,078, so a larger budget
+  // gives it fewer faces (the MRI's whole model at 8,200 tets: 26,358 tets, 35,349 with the skin's kept).
   std::vector<meshing::RegionSurface> surfaces;
-  long budget = o.targetTets;
-  for (int attempt = 0; attempt < 4; ++attempt, budget = budget * 3 / 2) {
-    budgetSurfaces(regions, budget);
+  long budget = o.targetTets, bodyBudget = o.targetTets;
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    budgetSurfaces(regions, bodyBudget);
     // The skin is carried by the body's tets: with an eighth of the target on the body (2,500 faces of a
     // MakeHuman body at 20,000 tets) the demo's model lost 1.3 % of its skin's volume at frame 400 of the
     // CMU walk, 0.8 % with a quarter.
-    if (!solidBody) regions.bodySurface.targetFaces = int(std::max<long>(kMinSkinFaces, budget / 4));
+    const int bodyFaces =
+        solidBody ? regions.bodySurface.targetFaces : int(std::max<long>(kMinSkinFaces, bodyBudget / 4));
+    budgetSurfaces(regions, budget);
+    regions.bodySurface.targetFaces = bodyFaces;
     surfaces = labelRegionSurfaces(box, ids, regions, source, &progress);
     if (!meshing::surfacesCross(surfaces)) break;
+    budget = long(double(budget) * kCrossingGrowth);
+    if (attempt >= 2 || !solidBody) bodyBudget = long(double(bodyBudget) * kCrossingGrowth);
   }
   return surfaces;
 }

@@ -25,7 +25,7 @@ void budgetSurfaces(LabelRegionOptions& options, long targetTets) {
 }
 
 long leastTargetTets(const LabelRegionOptions& options, std::size_t labels, long bodyFaces) {
-  return 2 * (bodyFaces + long(labels) * options.minLabelFaces);
+  return long(2 * (double(bodyFaces) + kCrossingGrowth * double(labels) * options.minLabelFaces));
 }
 
 Grid<Label> peeledLabels(const Grid<Label>* body, const Grid<Label>& labels, const std::vector<int>& rank) {
