@@ -1,15 +1,17 @@
-// Label surfaces of one label map moved apart where they cross. labelSurface makes each label's surface on
-// its own (smoothed, decimated, its voxel volume given back by a normal offset), so two labels that share
-// voxel faces get two surfaces that cross where one bulges more than the other: by up to about two thirds
-// of a voxel on the shipped CT (the right lung's lower lobe and the ninth rib, the small bowel and the
-// colon, the iliac arteries and veins). The label map puts their boundary between them: each vertex of one
-// surface inside another (winding number at least 1/2) moves out of it towards the other's closest point,
-// by half its depth and half the margin, and the other's vertices inside the first likewise, all at once,
-// in rounds until none is inside or the rounds run out. A vertex inside several surfaces takes its largest
-// move. With a field of view (the label map's grid), vertices the scan does not see (GridGeometry::seesPoint:
-// the caps where the scan cut a label) stay on the scan's edge; without one, as for bones brought onto
-// labels that go on beyond the scan, every vertex counts and may move. Not in the papers: Dicko et al. 2013's rule that no two tissues interpenetrate, for
-// tissues made from one label map (sharedLabelSurfaces shares their boundaries exactly, but undecimated).
+// Closed surfaces that stand for touching labels of one label map, moved apart where they cross.
+// labelSurface makes each label's surface on its own (smoothed, decimated, its voxel volume given back by a
+// normal offset), so two labels that share voxel faces get two surfaces that cross where one bulges more
+// than the other: by up to about two thirds of a voxel on the shipped CT (the right lung's lower lobe and
+// the ninth rib, the small bowel and the colon, the iliac arteries and veins); bones brought each onto its
+// own label cross the same way (the hip bones at the symphysis). The label map puts their boundary between
+// them: each vertex of one surface inside another (winding number at least 1/2) moves out of it towards
+// the other's closest point, by half its depth and half the margin, and the other's vertices inside the
+// first likewise, all at once, in rounds until none is inside or the rounds run out. A vertex inside
+// several surfaces takes its largest move. With a field of view (the label map's grid), vertices the scan
+// does not see (GridGeometry::seesPoint: the caps where the scan cut a label) stay on the scan's edge;
+// without one, as for bones that go on beyond the scan, every vertex counts and may move. Not in the
+// papers: Dicko et al. 2013's rule that no two tissues interpenetrate, for tissues made from one label map
+// (sharedLabelSurfaces shares their boundaries exactly, but undecimated).
 #pragma once
 
 #include "vesalius/core/grid.h"
