@@ -27,7 +27,7 @@ EdgeCounts countEdges(const MatrixX3i& F) {
   return counts;
 }
 
-int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F) {
+Eigen::VectorXi triangleComponentIds(Eigen::Index vertexCount, const MatrixX3i& F) {
   // Union-find with path halving.
   std::vector<int> parent(static_cast<std::size_t>(vertexCount));
   std::iota(parent.begin(), parent.end(), 0);
@@ -37,9 +37,19 @@ int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F) {
   };
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 1; c < 3; ++c) parent[root(F(f, c))] = root(F(f, 0));
-  std::vector<bool> isRoot(parent.size(), false);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) isRoot[root(F(f, 0))] = true;
-  return static_cast<int>(std::count(isRoot.begin(), isRoot.end(), true));
+  std::vector<int> id(parent.size(), -1);
+  int pieces = 0;
+  Eigen::VectorXi piece(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    int& r = id[static_cast<std::size_t>(root(F(f, 0)))];
+    if (r < 0) r = pieces++;
+    piece[f] = r;
+  }
+  return piece;
+}
+
+int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F) {
+  return F.rows() == 0 ? 0 : triangleComponentIds(vertexCount, F).maxCoeff() + 1;
 }
 
 Eigen::VectorXd triangleAreas(const MatrixX3d& V, const MatrixX3i& F) {

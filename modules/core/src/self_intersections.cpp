@@ -88,23 +88,8 @@ class PairTest {
   PairTest(const MatrixX3d& V, const MatrixX3i& F) : V_(V), F_(F) {}
 
   bool operator()(int f, int g) const {
-    std::array<int, 3> a{F_(f, 0), F_(f, 1), F_(f, 2)}, b{F_(g, 0), F_(g, 1), F_(g, 2)};
-    // Put the shared vertices first in both triangles, in the same order.
-    int shared = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = shared; j < 3; ++j)
-        if (a[i] == b[j]) {
-          std::swap(a[i], a[shared]);
-          std::swap(b[j], b[shared]);
-          ++shared;
-          break;
-        }
-    if (shared == 3) return true;
-    if (shared == 2) return foldedOnto(p(a[0]), p(a[1]), p(a[2]), p(b[2]));
-    if (shared == 1)
-      return segmentMeetsTriangle(p(a[1]), p(a[2]), p(b[0]), p(b[1]), p(b[2])) ||
-             segmentMeetsTriangle(p(b[1]), p(b[2]), p(a[0]), p(a[1]), p(a[2]));
-    return trianglesIntersect(p(a[0]), p(a[1]), p(a[2]), p(b[0]), p(b[1]), p(b[2]));
+    return meshTrianglesMeet({F_(f, 0), F_(f, 1), F_(f, 2)}, {p(F_(f, 0)), p(F_(f, 1)), p(F_(f, 2))},
+                             {F_(g, 0), F_(g, 1), F_(g, 2)}, {p(F_(g, 0)), p(F_(g, 1)), p(F_(g, 2))});
   }
 
  private:
@@ -114,6 +99,27 @@ class PairTest {
 };
 
 }  // namespace
+
+bool meshTrianglesMeet(std::array<int, 3> a, std::array<Vec3, 3> pa, std::array<int, 3> b, std::array<Vec3, 3> pb) {
+  // Put the shared vertices first in both triangles, in the same order.
+  int shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = shared; j < 3; ++j)
+      if (a[std::size_t(i)] == b[std::size_t(j)]) {
+        std::swap(a[std::size_t(i)], a[std::size_t(shared)]);
+        std::swap(pa[std::size_t(i)], pa[std::size_t(shared)]);
+        std::swap(b[std::size_t(j)], b[std::size_t(shared)]);
+        std::swap(pb[std::size_t(j)], pb[std::size_t(shared)]);
+        ++shared;
+        break;
+      }
+  if (shared == 3) return true;
+  if (shared == 2) return foldedOnto(pa[0], pa[1], pa[2], pb[2]);
+  if (shared == 1)
+    return segmentMeetsTriangle(pa[1], pa[2], pb[0], pb[1], pb[2]) ||
+           segmentMeetsTriangle(pb[1], pb[2], pa[0], pa[1], pa[2]);
+  return trianglesIntersect(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]);
+}
 
 bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
                         const Vec3& b2) {

@@ -17,6 +17,10 @@ EdgeCounts countEdges(const MatrixX3i& F);
 // Components of triangles connected through shared vertices. V only gives the vertex count (#V).
 int triangleComponents(Eigen::Index vertexCount, const MatrixX3i& F);
 
+// The component of each triangle (as triangleComponents counts them): #F, numbered 0, 1, ... in the order
+// of their first triangles.
+Eigen::VectorXi triangleComponentIds(Eigen::Index vertexCount, const MatrixX3i& F);
+
 // Area of each triangle: #F, units of V squared.
 Eigen::VectorXd triangleAreas(const MatrixX3d& V, const MatrixX3i& F);
 

@@ -18,6 +18,7 @@
 
 #include "vesalius/core/mesh.h"
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -32,6 +33,11 @@ std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const Mat
 // Throws UsageError if a candidate is not a row of F.
 std::vector<std::pair<int, int>> selfIntersections(const MatrixX3d& V, const MatrixX3i& F,
                                                    const std::vector<int>& candidates);
+
+// Whether triangles a and b of one mesh (vertex indices a, b; corner positions pa, pb) meet beyond what they
+// share, by the rules above: the test selfIntersections makes of each pair.
+bool meshTrianglesMeet(std::array<int, 3> a, std::array<Eigen::Vector3d, 3> pa, std::array<int, 3> b,
+                       std::array<Eigen::Vector3d, 3> pb);
 
 // Whether the closed triangles (a0, a1, a2) and (b0, b1, b2) meet, ignoring connectivity.
 bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,

@@ -20,7 +20,7 @@ namespace vesalius::meshing {
 struct ClosedSurfaceOptions {
   // Voxels along the longest side of the mesh's bounding box (any units). Finer keeps finer detail but
   // gives an iso-surface that quadric decimation can no longer bring down to a few thousand triangles
-  // without tearing it (decimate_surface.h then keeps the topology and stops early): OpenSim's hip bone
+  // without tearing it (label_surface.h then keeps the topology and stops early): OpenSim's hip bone
   // at 96 ends at 4,578 triangles for a target of 1,500, at 64 it reaches it.
   int resolution = 64;
   int targetFaces = 0;           // decimate to about this many triangles; 0 keeps the iso-surface's

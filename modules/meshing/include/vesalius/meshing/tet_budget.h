@@ -2,7 +2,7 @@
 //
 // TetGen keeps every input triangle, so the tets of a fine surface are many whatever the volume bound: a
 // 30,000-triangle muscle gives about 157,000 tets for a target of 20,000, a 12,000-triangle brain about
-// 280,000. The surface handed to TetGen is therefore coarsened first (quadric decimation,
+// 280,000. The surface handed to TetGen is therefore coarsened first (edge collapses that keep it closed,
 // decimate_surface.h; closed by its winding number instead where the decimation crosses itself,
 // closed_surface.h) to facesForTets(target) triangles, and again to half as many while the tets are more
 // than twice the target. At 200 triangles TetGen's radius-edge bound is first relaxed to its own default
