@@ -174,7 +174,7 @@ void runPatient(const PatientOptions& o, CommandRun& run) {
     std::cout << "  rig/: " << p.rig->rig.tets.T.rows() << " tets, joints " << p.rig->hipLeft << " and "
               << p.rig->hipRight << " turn the hips (vesalius pose --anatomy " << o.out << "/rig)\n";
     warnIfOverTetTarget(long(p.rig->rig.tets.T.rows()),
-                        (o.complete ? o.pipeline.rigging.modelRig : o.pipeline.rigging.rig).targetTets, "--rig-tets");
+                        (o.complete ? pipeline.rigging.modelRig : pipeline.rigging.rig).targetTets, "--rig-tets");
   } else {
     std::cout << "  no rig: " << p.noRigBecause << '\n';
   }

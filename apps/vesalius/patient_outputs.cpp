@@ -151,6 +151,7 @@ void writeCompletion(const patient::ReferenceCompletion& c, const patient::Whole
                                {"bone_groups_on_labels", groups},
                                {"bones_on_labels", bones},
                                {"bones_on_labels_apart", apartReport(whole.bonesApart)},
+                               {"bones_on_labels_apart_from_scan", apartReport(whole.bonesApartFromScan)},
                                {"tissue_vertices_bent_into_skin", c.outsideBefore},
                                {"tissue_vertices_left_outside_skin", c.outsideAfter},
                                {"into_skin_largest_move_mm", c.bendLargestMm},

@@ -109,8 +109,7 @@ TEST(CliRigLabels, CtBonesRiggedFromTheirLabelsMoveRigidlyWhenTheHipsFlex) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::cout << r.out << "rig: " << seconds(start) << " s\n";
   checkRig(rig);
-  // Within 2x of --target-tets (the body's surface cannot be decimated below about 3,600 faces;
-  // docs/methods/posing.md).
+  // Within 2x of --target-tets (the surfaces' budgets, docs/methods/posing.md).
   const long tets = long(io::readTetMesh(rig + "/rig.vtu").T.rows());
   RecordProperty("tets", std::to_string(tets));
   EXPECT_LT(tets, 2 * 15000);

@@ -168,6 +168,47 @@ TEST(DecimateSurface, NestedSurfacesDecimatedApartDoNotCross) {
   EXPECT_THROW(decimateSurfacesApart({&inner}, {40, 40}), UsageError);
 }
 
+// A small sphere a hair inside one side of a box a thousand times larger, both turned obliquely, the box an
+// obstacle (target 0): the box's triangles each span far more of the collapses' search cells than a
+// decimated triangle, and must still be found. The side lies halfway between the sphere and the farthest
+// point of the sphere decimated alone, which would cross it; decimated apart, it does not.
+TEST(DecimateSurface, AHugeObstacleTriangleIsStillAvoided) {
+  const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitY())).toRotationMatrix();
+  TriMesh ball = test::sphere(4, 10.0);
+  ball.V = ball.V * turn.transpose();
+  const int target = 1000;
+  const Eigen::Vector3d side = turn.col(0);  // the box's side faces this way
+  const double alone = (decimateSurface(ball, target).V * side).maxCoeff(), before = (ball.V * side).maxCoeff();
+  ASSERT_GT(alone, before);
+  TriMesh box;
+  box.V.resize(8, 3);
+  for (int i = 0; i < 8; ++i)
+    box.V.row(i) << (i & 1 ? 0.5 * (alone + before) : -20000.0), (i & 2 ? 10000.0 : -10000.0),
+        (i & 4 ? 10000.0 : -10000.0);
+  box.V = box.V * turn.transpose();
+  box.F.resize(12, 3);
+  box.F << 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6;
+  ASSERT_GT(enclosedVolume(box.V, box.F), 0.0);
+  const auto crossing = [](const TriMesh& x, const TriMesh& y) {
+    return !selfIntersections(concatenate(x, y).V, concatenate(x, y).F).empty();
+  };
+  ASSERT_FALSE(crossing(ball, box));
+  ASSERT_TRUE(crossing(decimateSurface(ball, target), box));
+  const std::vector<TriMesh> apart = decimateSurfacesApart({&ball, &box}, {target, 0});
+  EXPECT_FALSE(crossing(apart[0], apart[1]));
+  EXPECT_EQ(apart[1].F, box.F);
+  EXPECT_EQ(apart[1].V, box.V);
+  std::printf("the side %.2e mm beyond the sphere\n", 0.5 * (alone - before));
+  expectDecimatedClosed(ball, apart[0], target, "ball beside a huge box");
+}
+
+TEST(DecimateSurface, NonFiniteVerticesAreRefused) {
+  TriMesh ball = test::sphere(3, 10.0);
+  ball.V(5, 1) = std::nan("");
+  EXPECT_THROW(decimateSurface(ball, 100), BadInput);
+}
+
 // Open and non-manifold edges keep their vertices: the rest of the surface is decimated around them.
 TEST(DecimateSurface, OpenEdgesStay) {
   TriMesh open = test::sphere(4, 10.0);

@@ -88,6 +88,28 @@ TEST(LabelSurfacesApart, WithoutAFieldOfViewEveryVertexEndsApart) {
   EXPECT_LE(after, 1.0);
 }
 
+// The big block held fixed (a scan's own tissue): it keeps every vertex, and the small one moves all the way
+// out of it.
+TEST(LabelSurfacesApart, AFixedSurfaceStaysAndTheOtherMovesOut) {
+  const GridGeometry grid = blocksGrid();
+  auto [big, small] = blocks();
+  const TriMesh bigBefore = big;
+  const double before = deepestEitherWay(big, small);
+  LabelSurfacesApartOptions o;
+  o.fixed = {true, false};
+  const LabelSurfacesApart apart = moveLabelSurfacesApart({&big, &small}, &grid, o);
+  const double after = deepestEitherWay(big, small);
+  std::printf("the big block fixed: deepest %.2f mm before, %.2f after; %ld vertices inside before, %ld after, "
+              "%d rounds, largest move %.2f mm\n",
+              before, after, apart.insideBefore, apart.insideAfter, apart.rounds, apart.largestMoveMm);
+  EXPECT_EQ(big.V, bigBefore.V);
+  EXPECT_GT(apart.insideBefore, 0);
+  EXPECT_EQ(apart.insideAfter, 0);
+  EXPECT_LE(after, 1.0);
+  o.fixed = {true};
+  EXPECT_THROW(moveLabelSurfacesApart({&big, &small}, &grid, o), UsageError);
+}
+
 TEST(LabelSurfacesApart, NullSurfacesAndBadOptionsAreRefused) {
   GridGeometry grid;
   grid.size = Eigen::Vector3i::Constant(4);

@@ -1,6 +1,6 @@
 // The virtual patient posed (patient/patient_rig.h) on the shipped CT and its labels, and on the same scan
 // stored flipped left-right (the same body in other voxel order: the rig must find the patient's own left
-// hip). For each pose, Sujar et al.'s claims: no inverted tet, the skin's volume within 1 %, no tissue vertex
+// hip). For each pose, issue 6's claims: no inverted tet, the skin's volume within 3 %, no tissue vertex
 // left outside its tet; the re-posed organ map's femurs over the posed femur meshes voxelized (Dice ≥ 0.9);
 // and the femur meshes turned about their hip joints as the pose asks (a bone moves rigidly, Sujar et al. 2018, §3.3).
 #include "test_data.h"
@@ -72,7 +72,7 @@ void checkPoses(const Image& ct, const LabelMap& organs, const std::string& name
               << " tissue vertices left outside, " << q.untangle.badBefore << " tets repaired, " << q.untangle.badAfter
               << " left bad (" << q.untangle.fixedBad << " with only bone corners)\n";
     EXPECT_EQ(q.inverted, 0);
-    EXPECT_LT(std::abs(q.skinVolumeChangePct), 1.0);
+    EXPECT_LT(std::abs(q.skinVolumeChangePct), 3.0);
     EXPECT_EQ(q.leftOutside, 0);
     ASSERT_TRUE(posed.organs);
     for (const std::string& femur : {rig.hipLeft, rig.hipRight}) {

@@ -48,7 +48,7 @@ LabelRegionOptions options(bool close) {
   o.body = kBody;
   o.largestBodyPartOnly = true;
   o.bodySurface.targetFaces = 1000;
-  o.labelFaces = 200;
+  o.labelFaces = 100;
   o.closeOverBudget = close;
   return o;
 }

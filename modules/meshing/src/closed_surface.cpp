@@ -43,6 +43,43 @@ Grid<Label> insideVoxels(const TriMesh& mesh, const GridGeometry& g, const Windi
   return inside;
 }
 
+// Pieces of the solid smaller than a 2x2x2 block are below the grid's resolution: single voxels where the
+// approximate winding number of a fin (two back-to-back triangles, exactly 0 beside them) strays above 1/2.
+constexpr long kLeastPieceVoxels = 8;
+
+// Removes the 26-connected pieces of label 1 with fewer than kLeastPieceVoxels voxels.
+void dropSpecks(Grid<Label>& inside) {
+  const GridGeometry& g = inside.geometry;
+  std::vector<bool> seen(inside.values.size(), false);
+  std::vector<Eigen::Vector3i> piece, stack;
+  for (int k = 0; k < g.size.z(); ++k)
+    for (int j = 0; j < g.size.y(); ++j)
+      for (int i = 0; i < g.size.x(); ++i) {
+        const std::int64_t start = g.linearIndex(i, j, k);
+        if (inside.values[std::size_t(start)] != 1 || seen[std::size_t(start)]) continue;
+        piece.clear();
+        stack.assign(1, Eigen::Vector3i(i, j, k));
+        seen[std::size_t(start)] = true;
+        while (!stack.empty()) {
+          const Eigen::Vector3i v = stack.back();
+          stack.pop_back();
+          piece.push_back(v);
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const Eigen::Vector3i n = v + Eigen::Vector3i(dx, dy, dz);
+                if (!g.contains(n.x(), n.y(), n.z())) continue;
+                const std::int64_t at = g.linearIndex(n.x(), n.y(), n.z());
+                if (inside.values[std::size_t(at)] != 1 || seen[std::size_t(at)]) continue;
+                seen[std::size_t(at)] = true;
+                stack.push_back(n);
+              }
+        }
+        if (long(piece.size()) >= kLeastPieceVoxels) continue;
+        for (const Eigen::Vector3i& v : piece) inside.at(v.x(), v.y(), v.z()) = 0;
+      }
+}
+
 }  // namespace
 
 TriMesh closedSurface(const TriMesh& mesh, const ClosedSurfaceOptions& options) {
@@ -51,6 +88,7 @@ TriMesh closedSurface(const TriMesh& mesh, const ClosedSurfaceOptions& options) 
   solid.labels = insideVoxels(mesh, windingGrid(mesh, options.resolution), options.winding);
   if (std::find(solid.labels.values.begin(), solid.labels.values.end(), Label(1)) == solid.labels.values.end())
     throw BadInput("", "the surface encloses no voxel at resolution " + std::to_string(options.resolution));
+  dropSpecks(solid.labels);
   // Voxels meeting across an edge or a corner only would give the iso-surface non-manifold edges.
   detail::makeWellComposed(solid.labels);
   SurfaceOptions surface;

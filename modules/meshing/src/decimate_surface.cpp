@@ -71,15 +71,26 @@ class TriangleCells {
   explicit TriangleCells(double size) : size_(size) {}
 
   void insert(int f, const Eigen::AlignedBox3d& box) {
+    // A triangle far larger than the cells (a flat side beside a finely detailed part) is listed once and
+    // visited by every query rather than listed in each of its cells.
+    const Eigen::Array3d cells =
+        (box.max() / size_).array().floor() - (box.min() / size_).array().floor() + 1.0;
+    if (cells.prod() > kMostCellsPerTriangle) {
+      oversize_.push_back(f);
+      return;
+    }
     forEachCell(box, [&](std::int64_t key) {
       auto& listed = cells_[key];
       if (listed.empty() || listed.back() != f) listed.push_back(f);
     });
   }
 
-  // visit(f) for every triangle listed in a cell that `box` overlaps; a triangle may come more than once.
+  // visit(f) for every triangle listed in a cell that `box` overlaps, and every oversize one; a triangle
+  // may come more than once.
   template <class Visit>
   bool any(const Eigen::AlignedBox3d& box, Visit&& visit) const {
+    for (int f : oversize_)
+      if (visit(f)) return true;
     bool found = false;
     forEachCell(box, [&](std::int64_t key) {
       if (found) return;
@@ -95,6 +106,8 @@ class TriangleCells {
   }
 
  private:
+  static constexpr double kMostCellsPerTriangle = 512.0;
+
   template <class F>
   void forEachCell(const Eigen::AlignedBox3d& box, F&& f) const {
     const Eigen::Vector3i lo = (box.min() / size_).array().floor().cast<int>();
@@ -107,6 +120,7 @@ class TriangleCells {
 
   double size_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::vector<int> oversize_;
 };
 
 // Collapses on surfaces held as one mesh, each (a part: part[f] of each triangle f, the parts sharing no
@@ -483,6 +497,8 @@ std::vector<TriMesh> decimateSurfacesApart(const std::vector<const TriMesh*>& su
                                            const std::vector<int>& targetFaces) {
   if (targetFaces.size() != surfaces.size())
     throw UsageError("decimating surfaces apart needs one target per surface");
+  for (const TriMesh* surface : surfaces)
+    if (!surface->V.allFinite()) throw BadInput("", "a surface to decimate has a vertex that is not a finite number");
   TriMesh all;
   std::vector<int> part;
   std::vector<long> targets;

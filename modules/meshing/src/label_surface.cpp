@@ -1,13 +1,13 @@
 // The surface of one label (label_surface.h): flying edges, world mapping, smoothing, decimation.
 #include "vesalius/meshing/label_surface.h"
 
-#include "decimate_polydata.h"
 #include "label_surface_in_box.h"
 #include "restore_volume.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/mesh_measures.h"
 #include "vesalius/core/self_intersections.h"
 #include "vesalius/io/polydata.h"
+#include "vesalius/meshing/decimate_surface.h"
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageData.h>
@@ -85,7 +85,7 @@ void validate(const SurfaceOptions& o) {
 
 // Smoothing, decimation and outward orientation of one contour.
 TriMesh smoothedSurface(vtkPolyData* surface, const SurfaceOptions& options) {
-  TriMesh mesh = io::fromPolyData(detail::decimatePolyData(smooth(surface, options), options.targetFaces), "label surface");
+  TriMesh mesh = decimateSurface(io::fromPolyData(smooth(surface, options), "label surface"), options.targetFaces);
   // Flying edges orients every triangle consistently; a direction matrix with negative determinant
   // (a mirrored grid) turns the whole surface inside out, which the sign of the volume shows.
   if (enclosedVolume(mesh.V, mesh.F) < 0.0) mesh.F.col(1).swap(mesh.F.col(2));
@@ -134,14 +134,6 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
   // Smoothing can pull the two sides of a thin part through each other (the test CT's left hip bone at
   // 20 iterations); TetGen refuses such surfaces. The smoothing is halved until the surface is clean; the
   // volume offset is then kept wherever it crosses nothing.
-  // Decimation that keeps the topology can still pinch an edge into four triangles (a hand's small bones
-  // at 6 mm voxels), which TetGen refuses as well: such a surface is not clean either, and one that stays
-  // pinched without smoothing is kept undecimated.
-  const EdgeCounts contourEdges = countEdges(io::fromPolyData(contoured, "label surface").F);
-  const auto pinched = [&](const TriMesh& m) {
-    const EdgeCounts e = countEdges(m.F);
-    return e.boundary > contourEdges.boundary || e.nonManifold > contourEdges.nonManifold;
-  };
   SurfaceOptions attempt = options;
   TriMesh mesh;
   for (;;) {
@@ -150,11 +142,7 @@ TriMesh detail::labelSurfaceInBox(const LabelMap& labels, Label id, const LabelB
       if (options.preserveVolume) detail::restoreVolume(mesh, voxelVolume, maxOffset);
       break;
     }
-    if (attempt.smoothingIterations == 0 && attempt.targetFaces > 0 && pinched(mesh)) {
-      attempt.targetFaces = 0;
-      mesh = smoothedSurface(contoured, attempt);
-    }
-    const bool clean = !crosses(mesh) && !pinched(mesh);
+    const bool clean = !crosses(mesh);
     if (clean || attempt.smoothingIterations == 0) {
       TriMesh offset = mesh;
       if (clean && options.preserveVolume && detail::restoreVolume(offset, voxelVolume, maxOffset) &&

@@ -24,9 +24,10 @@ struct Crossing {
   std::vector<MatrixX3d> moves;  // per surface, #V by 3
 };
 
-// Every seen vertex of every surface inside another, and the move that takes it half way out.
+// Every seen vertex of every surface inside another, and the move that takes it half way out (all the way
+// out of a fixed surface; a fixed surface's vertices do not move).
 Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std::vector<bool>>& seen,
-                   double marginMm) {
+                   const std::vector<bool>& fixed, double marginMm) {
   Crossing c;
   std::vector<Eigen::AlignedBox3d> boxes;
   for (const TriMesh* s : surfaces) {
@@ -35,7 +36,8 @@ Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std:
   }
   for (std::size_t i = 0; i < surfaces.size(); ++i)
     for (std::size_t j = 0; j < surfaces.size(); ++j) {
-      if (i == j || !boxes[i].intersects(boxes[j]) || surfaces[j]->F.rows() == 0) continue;
+      if (i == j || fixed[i] || !boxes[i].intersects(boxes[j]) || surfaces[j]->F.rows() == 0) continue;
+      const double share = fixed[j] ? 1.0 : 0.5;
       std::vector<Eigen::Index> rows;
       for (Eigen::Index v = 0; v < surfaces[i]->V.rows(); ++v)
         if (seen[i][std::size_t(v)] && boxes[j].contains(surfaces[i]->V.row(v).transpose())) rows.push_back(v);
@@ -48,7 +50,7 @@ Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std:
         ++c.inside;
         c.deepestMm = std::max(c.deepestMm, depth);
         const Eigen::RowVector3d out =
-            (in.closest.point.transpose() - surfaces[i]->V.row(v)) / depth * (depth + marginMm) / 2;
+            (in.closest.point.transpose() - surfaces[i]->V.row(v)) / depth * (depth + marginMm) * share;
         if (out.squaredNorm() > c.moves[i].row(v).squaredNorm()) c.moves[i].row(v) = out;
       }
     }
@@ -59,8 +61,10 @@ Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std:
 
 LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces, const GridGeometry* fieldOfView,
                                           const LabelSurfacesApartOptions& options) {
-  if (!(options.marginMm >= 0 && options.rounds >= 0))
+  if (!(options.marginMm >= 0 && options.rounds >= 0) ||
+      !(options.fixed.empty() || options.fixed.size() == surfaces.size()))
     throw UsageError("moveLabelSurfacesApart: options out of range");
+  const std::vector<bool> fixed = options.fixed.empty() ? std::vector<bool>(surfaces.size(), false) : options.fixed;
   std::vector<std::vector<bool>> seen;
   std::vector<MatrixX3d> start;
   for (const TriMesh* s : surfaces) {
@@ -72,13 +76,13 @@ LabelSurfacesApart moveLabelSurfacesApart(const std::vector<TriMesh*>& surfaces,
     start.push_back(s->V);
   }
   LabelSurfacesApart result;
-  Crossing c = crossings(surfaces, seen, options.marginMm);
+  Crossing c = crossings(surfaces, seen, fixed, options.marginMm);
   result.insideBefore = c.inside;
   result.deepestBeforeMm = c.deepestMm;
   for (int round = 0; round < options.rounds && c.inside > 0; ++round) {
     for (std::size_t i = 0; i < surfaces.size(); ++i) surfaces[i]->V += c.moves[i];
     ++result.rounds;
-    c = crossings(surfaces, seen, options.marginMm);
+    c = crossings(surfaces, seen, fixed, options.marginMm);
   }
   result.insideAfter = c.inside;
   result.deepestAfterMm = c.deepestMm;

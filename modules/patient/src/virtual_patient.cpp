@@ -29,8 +29,8 @@ ReferenceAnatomy classAnatomy(const Image& scan, const LabelMap& classes, const 
                               const std::string& scanSource) {
   ReferenceAnatomy anatomy;
   anatomy.skin = scanSkin(scan, options, scanSource, anatomy.skinCutVertices);
-  // The bone class is many thin pieces, which decimation tears and then takes long over (tens of seconds
-  // for the shipped CT at 3,000 triangles); its surface is kept as flying edges and smoothing make it.
+  // The bone class is many thin pieces, whose handles and crumbs a decimated surface would keep or lose;
+  // its surface is kept as flying edges and smoothing make it.
   const segmentation::Mask bone = segmentation::maskOf(classes.labels, segmentation::kCtBone);
   if (options.modality == segmentation::Modality::Ct && segmentation::countVoxels(bone) > 0) {
     TriMesh mesh = meshing::labelSurface(classes, segmentation::kCtBone);

@@ -94,6 +94,7 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
     patientTissues.push_back(tissueName);
     model.bones.push_back(std::move(bone));
   }
+  // Bones on labels that share voxel faces, everywhere (they go on beyond the scan).
   std::vector<TriMesh*> onLabels;
   for (const RegisteredBone& bone : model.bones) onLabels.push_back(&named(bone.tissue)->mesh);
   model.bonesApart = meshing::moveLabelSurfacesApart(onLabels, nullptr);
@@ -129,6 +130,19 @@ WholeModel wholeModel(const ReferenceAnatomy& completed, const ReferenceAnatomy&
       tissues.push_back(std::move(added));
     model.labelTissues[tissue.name] = {tissue.name};
     patientTissues.push_back(tissue.name);
+  }
+  // The bones on labels moved out of the scan's tissues of the labels they touch (the bladder against a hip
+  // bone), in the field of view, where the label map puts their boundary; the scan's tissues stay.
+  if (!model.bones.empty()) {
+    std::vector<TriMesh*> labelled;
+    meshing::LabelSurfacesApartOptions scanFixed;
+    for (const std::string& name : patientTissues)
+      if (const auto t = named(name); t != tissues.end()) {
+        labelled.push_back(&t->mesh);
+        scanFixed.fixed.push_back(std::none_of(model.bones.begin(), model.bones.end(),
+                                               [&](const RegisteredBone& b) { return b.tissue == name; }));
+      }
+    model.bonesApartFromScan = meshing::moveLabelSurfacesApart(labelled, &organs->labels.geometry, scanFixed);
   }
   std::vector<transfer::BendRole> roles;
   for (const ReferenceTissue& t : tissues)

@@ -225,14 +225,11 @@ LabelRegionOptions rigRegionOptions(bool solidBody) {
 // and keeps the body's shape; a CT's map labels organs and bones, so its body is every labelled voxel made
 // solid and its bones grow into the unlabelled soft tissue too.
 // A CT's bones (solidBody) then get the surface budgets of budgetSurfaces (within 2x of the target), their
-// gaps narrower than two voxels closed and only their largest parts: quadric decimation tore the test CT's
-// sacrum (its foramina and thin parts at 4 mm) at every budget up to twice its own, and the topology-keeping
-// fallback stopped at 2,634 faces, 10,642 tets inside it and as many around it. The reference's bones get
-// the same budgets, and a bone whose surface stays above twice its share is closed until it meets it
-// (LabelRegionOptions::closeOverBudget): the torso's rib cage, spine, scapulae and skull keep a loop per
-// rib, on which the topology-keeping decimation stopped at 19,940 faces (the demo's model at 8 mm voxels,
-// 157,882 tets for 20,000 asked); closed until they fit their share, the rig has 22,905 tets. The
-// tissue so filled lies between bones of the one torso joint, which moved it with them before as well.
+// gaps narrower than two voxels closed and only their largest parts: the test CT's sacrum at 4 mm has
+// foramina, handles that its decimated surface keeps. The reference's bones get the same budgets, and a bone
+// whose surface stays above twice its share is closed until it meets it (LabelRegionOptions::closeOverBudget):
+// the torso's rib cage, spine, scapulae and skull keep a handle per rib. The tissue so filled lies between
+// bones of the one torso joint, which moved it with them before as well.
 std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<std::vector<Label>>& boneLabels,
                                                 Label body, bool solidBody, const RigOptions& o,
                                                 const std::string& source, Progress& progress) {
@@ -252,12 +249,10 @@ std::vector<meshing::RegionSurface> boneRegions(LabelMap box, const std::vector<
   LabelRegionOptions regions = rigRegionOptions(solidBody);
   regions.body = body;
   // Coarse bones can cross each other or a coarse body a voxel above them (the test CT's hip bones at
-  // 110-170 faces; an MRI's whole model at 2,000 tets crossed its torso bones at 40): finer budgets then,
-  // and TetGen names the crossing if it stays. A solid body grows its budget only from the third try: its
-  // bones have a few hundred faces where it has thousands (growing both took the test CT's rig at 4,000
-  // tets to a body of 1,686 faces and 10,502 tets). A skin grows with its bones: quadric decimation tears
-  // a MakeHuman skin at 8 mm below about 4,500 faces and its fallback stops at 11,078, so a larger budget
-  // gives it fewer faces (the MRI's whole model at 8,200 tets: 26,358 tets, 35,349 with the skin's kept).
+  // 110-170 faces); labelRegionSurfaces then decimates them together, apart. Where they still cross (their
+  // undecimated surfaces touch), finer budgets, and TetGen names the crossing if it stays. A solid body
+  // grows its budget only from the third try: its bones have a few hundred faces where it has thousands
+  // (growing both took the test CT's rig at 4,000 tets to a body of 1,686 faces and 10,502 tets).
   std::vector<meshing::RegionSurface> surfaces;
   long budget = o.targetTets, bodyBudget = o.targetTets;
   for (int attempt = 0; attempt < 6; ++attempt) {

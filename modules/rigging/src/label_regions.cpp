@@ -2,6 +2,7 @@
 
 #include "vesalius/core/error.h"
 #include "vesalius/core/label_boxes.h"
+#include "vesalius/meshing/decimate_surface.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <algorithm>
@@ -15,7 +16,7 @@ namespace vesalius::rigging {
 // the test CT: 3.3-3.5 tets per face over 6,000-7,700 faces; rig --reference at 8 mm: 3.1 at 2,900 faces).
 // The volume bound barely changes the count (docs/methods/tetrahedral-meshes.md), so the face budget is
 // what sets it: a quarter of the target, so that the count stays within 2x of it where a surface stops
-// above its budget (the CT's body tears below about 3,600 faces at 4 mm voxels). Larger budgets grow
+// above its budget (where its handles need more triangles). Larger budgets grow
 // faster than linearly: with surfaces a voxel apart, the smaller triangles make TetGen refine the gaps
 // (rig --reference at 8 mm with 6,100 faces: 6.5 tets per face).
 void budgetSurfaces(LabelRegionOptions& options, long targetTets) {
@@ -112,6 +113,35 @@ Grid<Label> closedLabels(const Grid<Label>& map, const segmentation::Mask& insid
   return closed;
 }
 
+// Surfaces decimated one by one can cross where they lie a voxel apart (a coarse body over the bones under
+// it). They are then made again undecimated and decimated together to the faces each has, with no
+// collapse letting one meet another (decimateSurfacesApart). regions: the body's first when `body` is given,
+// then one per id of `ids` (labels of `peeled`).
+void decimateApart(std::vector<meshing::RegionSurface>& regions, const LabelMap* body, const LabelMap& peeled,
+                   const std::vector<Label>& ids, const LabelRegionOptions& options) {
+  std::vector<TriMesh> fine;
+  meshing::SurfaceOptions undecimated = options.bodySurface;
+  undecimated.targetFaces = 0;
+  if (body) fine.push_back(meshing::labelSurface(*body, 1, undecimated));
+  undecimated = options.labelSurface;
+  undecimated.targetFaces = 0;
+  for (meshing::LabelSurface& s : meshing::labelSurfaces(peeled, ids, undecimated)) fine.push_back(std::move(s.mesh));
+  std::vector<const TriMesh*> surfaces;
+  std::vector<int> targets;
+  for (std::size_t i = 0; i < fine.size(); ++i) {
+    surfaces.push_back(&fine[i]);
+    targets.push_back(int(regions[i].surface.F.rows()));
+  }
+  std::vector<TriMesh> apart = meshing::decimateSurfacesApart(surfaces, targets);
+  for (std::size_t i = 0; i < apart.size(); ++i) {
+    // A label's surface carries its id on every triangle (label_surface.h).
+    const auto id = fine[i].faceAttributes.integer.find(kLabel);
+    if (id != fine[i].faceAttributes.integer.end() && id->second.size() > 0)
+      apart[i].faceAttributes.integer[kLabel] = Eigen::VectorXi::Constant(apart[i].F.rows(), id->second[0]);
+    regions[i].surface = std::move(apart[i]);
+  }
+}
+
 }  // namespace
 
 std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, const std::vector<Label>& ids,
@@ -144,8 +174,10 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     return peeled;
   };
   std::vector<meshing::LabelSurface> surfaces;
+  LabelMap peeled;  // the labels that the surfaces are of
   if (options.labelFaces <= 0 || ids.empty()) {
-    surfaces = meshing::labelSurfaces(peel(map.labels), ids, options.labelSurface, progress);
+    peeled = peel(map.labels);
+    surfaces = meshing::labelSurfaces(peeled, ids, options.labelSurface, progress);
   } else {
     // LabelRegionOptions::closeOverBudget: the radius doubles from a voxel while a label's surface stays
     // above twice its budget, up to a quarter of the label's extent (a hand's bones, scattered and each
@@ -159,8 +191,7 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     std::map<Label, meshing::LabelSurface> budgeted;
     Grid<Label> previous;
     for (;;) {
-      const LabelMap peeled =
-          peel(body ? closedLabels(map.labels, segmentation::maskOf(body->labels, 1), rank, closing) : map.labels);
+      peeled = peel(body ? closedLabels(map.labels, segmentation::maskOf(body->labels, 1), rank, closing) : map.labels);
       std::vector<bool> changed(65536, shares.empty());
       if (shares.empty()) {
         shares = labelShares(peeled.labels, ids, options);
@@ -192,8 +223,12 @@ std::vector<meshing::RegionSurface> labelRegionSurfaces(const LabelMap& map, con
     for (Label id : ids)
       if (auto found = budgeted.find(id); found != budgeted.end()) surfaces.push_back(std::move(found->second));
   }
-  for (meshing::LabelSurface& s : surfaces)
+  std::vector<Label> regionIds;
+  for (meshing::LabelSurface& s : surfaces) {
     regions.push_back({std::move(s.mesh), int(s.id), source + " label '" + s.name + "'"});
+    regionIds.push_back(s.id);
+  }
+  if (meshing::surfacesCross(regions)) decimateApart(regions, body ? &*body : nullptr, peeled, regionIds, options);
   return regions;
 }
 

@@ -8,8 +8,9 @@
 // 2018). The voxel solid is made well-composed and turned into a surface as a label is (labelSurface,
 // label_surface.h: flying edges, windowed-sinc smoothing, decimation to a face count, the voxel volume
 // restored, no crossing triangles). A hole closes along the surface a soap film would span; a flap or a
-// fin (two triangles back to back) has no inside and disappears. Details below one voxel are lost: the
-// grid's resolution is the accuracy (measured in tests/meshing/closed_surface_test.cpp).
+// fin (two triangles back to back) has no inside and disappears, and so do pieces of the solid smaller than
+// 2x2x2 voxels (where the approximate winding number beside a fin strays above 1/2). Details below one voxel
+// are lost: the grid's resolution is the accuracy (measured in tests/meshing/closed_surface_test.cpp).
 #pragma once
 
 #include "vesalius/core/mesh.h"
@@ -18,10 +19,8 @@
 namespace vesalius::meshing {
 
 struct ClosedSurfaceOptions {
-  // Voxels along the longest side of the mesh's bounding box (any units). Finer keeps finer detail but
-  // gives an iso-surface that quadric decimation can no longer bring down to a few thousand triangles
-  // without tearing it (label_surface.h then keeps the topology and stops early): OpenSim's hip bone
-  // at 96 ends at 4,578 triangles for a target of 1,500, at 64 it reaches it.
+  // Voxels along the longest side of the mesh's bounding box (any units). Finer keeps finer detail, and
+  // holes and handles of the solid that a decimated surface keeps.
   int resolution = 64;
   int targetFaces = 0;           // decimate to about this many triangles; 0 keeps the iso-surface's
   int smoothingIterations = 20;  // windowed-sinc iterations of labelSurface (0 or >= 2)

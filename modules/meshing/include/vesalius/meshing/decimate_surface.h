@@ -12,10 +12,9 @@
 // proportion to its area) is under four is below the decimation's resolution and is left out (the largest
 // piece always stays): a label's crumbs, each a few triangles, would otherwise be slivers that TetGen fills
 // with tets. A closed surface then reaches the target exactly (within the one triangle of parity) unless its
-// handles need more triangles. Templates with fine surfaces need this before TetGen, which keeps every input
-// triangle (a 30k-triangle muscle gives 150k tets whatever the target): tet_budget.h coarsens them with it.
-// Label surfaces (label_surface.h) are still decimated by VTK's quadric decimation (see
-// docs/methods/tetrahedral-meshes.md, "Deviations and limits").
+// handles need more triangles. Templates
+// with fine surfaces need this before TetGen, which keeps every input triangle (a 30k-triangle muscle gives
+// 150k tets whatever the target).
 #pragma once
 
 #include "vesalius/core/mesh.h"

@@ -6,9 +6,8 @@
 // (origin + direction · diag(spacing) · index, so oblique and flipped directions are honoured exactly),
 // smoothed with vtkWindowedSincPolyDataFilter (Taubin, Zhang, Golub, "Optimal surface smoothing as filter
 // design", ECCV 1996; coordinates normalised, feature edges and boundary not treated specially), optionally
-// decimated to a target face count by vtkQuadricDecimation (Garland and Heckbert 1997) with volume
-// preservation (or, where that tears a label of many thin pieces open, by vtkDecimatePro keeping the
-// topology, which may stop above the target), oriented outward (the enclosed signed volume is made positive), and finally moved along
+// decimated to a target face count by edge collapses that keep it closed (decimate_surface.h), oriented
+// outward (the enclosed signed volume is made positive), and finally moved along
 // its vertex normals by the one uniform distance that makes it enclose the label's voxel volume.
 // That last step exists because marching cubes cuts the corners of every voxel and smoothing shrinks
 // thin parts: on the demo CT's bone (3 mm voxels) the surface would otherwise enclose 2.6% less than its

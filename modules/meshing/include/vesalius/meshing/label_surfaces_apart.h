@@ -9,7 +9,8 @@
 // first likewise, all at once, in rounds until none is inside or the rounds run out. A vertex inside
 // several surfaces takes its largest move. With a field of view (the label map's grid), vertices the scan
 // does not see (GridGeometry::seesPoint: the caps where the scan cut a label) stay on the scan's edge;
-// without one, as for bones that go on beyond the scan, every vertex counts and may move. Not in the
+// without one, as for bones that go on beyond the scan, every vertex counts and may move. Surfaces can be
+// held fixed (the scan's own tissues, against bones brought onto their labels). Not in the
 // papers: Dicko et al. 2013's rule that no two tissues interpenetrate, for tissues made from one label map
 // (sharedLabelSurfaces shares their boundaries exactly, but undecimated).
 #pragma once
@@ -24,6 +25,8 @@ namespace vesalius::meshing {
 struct LabelSurfacesApartOptions {
   double marginMm = 0.1;  // how far apart the two sides of a crossing should end
   int rounds = 8;         // at most
+  // Per surface (empty: none), those that keep their place; a vertex inside one moves all the way out of it.
+  std::vector<bool> fixed;
 };
 
 struct LabelSurfacesApart {

@@ -5,9 +5,10 @@
 //    (bone_onto_label.h). Its group was already placed on the labels by the transfer's per-bone
 //    registration (transfer::AnatomyTransferOptions::boneTargets), so the muscles and the bones beyond
 //    the field of view follow it; here the mesh takes the label's shape. Bones on labels that share voxel
-//    faces (the hip bones at the symphysis, a femoral head in its acetabulum) each take their own label's
-//    boundary, and where those cross they are moved apart (meshing/label_surfaces_apart.h), as the labels'
-//    own surfaces are.
+//    faces (the hip bones at the symphysis, a femoral head in its acetabulum, the bladder against a hip
+//    bone) each take their own label's boundary, and where those cross each other or the scan's tissues of
+//    neighbouring labels they are moved apart (meshing/label_surfaces_apart.h), as the labels' own surfaces
+//    are.
 //  - Reference bones that labels show bone by bone: OpenSim gives the spine, the rib cage with the
 //    scapulae and the skull as one mesh each, where the organ map has a label per vertebra and per rib.
 //    Inside the field of view the labels' surfaces take their place: the reference mesh keeps only its
@@ -101,7 +102,8 @@ struct WholeModel {
   // that represent it.
   std::map<std::string, std::vector<std::string>> labelTissues;
   std::vector<RegisteredBone> bones;
-  meshing::LabelSurfacesApart bonesApart;  // the bones on labels moved apart where they cross
+  meshing::LabelSurfacesApart bonesApart;          // the bones on labels moved apart from each other
+  meshing::LabelSurfacesApart bonesApartFromScan;  // and from the scan's tissues, in the field of view
   // Each reference tissue that the labels replaced inside the scan, and how many of its faces went (a
   // tissue whose faces all went is gone from the model).
   std::vector<std::pair<std::string, long>> replacedFaces;

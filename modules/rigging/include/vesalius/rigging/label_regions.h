@@ -25,9 +25,9 @@ namespace vesalius::rigging {
 struct LabelRegionOptions {
   int body = 0;                        // region label of the body around the labels; 0: no body region
   // A solid body: closed by three voxels before its holes are filled (a segmentation's organs leave gaps
-  // and tunnels between them on which quadric decimation tears and falls back to a decimation that stops
-  // far above its target), then cut to its largest face-connected part (parts touching at an edge or a
-  // corner are separate surface pieces; crumbs give tets no bone weighs). Label voxels outside it are
+  // and tunnels between them, handles that keep a decimated surface far above its target), then cut to its
+  // largest face-connected part (parts touching at an edge or a corner are separate surface pieces; crumbs
+  // give tets no bone weighs). Label voxels outside it are
   // dropped by the peel.
   bool solidBody = false;
   // The body cut to its largest face-connected part also when it is not made solid (rig --reference: a
@@ -51,7 +51,7 @@ struct LabelRegionOptions {
   bool largestPartOnly = false;
 };
 
-// The fewest triangles budgetSurfaces gives a body surface (a coarser one tears at 4 mm voxels).
+// The fewest triangles budgetSurfaces gives a body surface.
 constexpr int kMinBodyFaces = 1000;
 
 // Face budgets for a mesh of about targetTets tets made with TetGen's keepSurface (-Y), where the
