@@ -1,6 +1,8 @@
-// Connected components of masks (label_ops.h): ITK's union-find labelling, then components sorted by size.
+// Connected components of masks (label_ops.h): ITK's union-find labelling sorted by size; small pieces by
+// core's flood (small_pieces.h).
 #include "itk_bridge.h"
 #include "vesalius/core/error.h"
+#include "vesalius/core/small_pieces.h"
 #include "vesalius/segmentation/label_ops.h"
 
 #include <itkConnectedComponentImageFilter.h>
@@ -15,15 +17,13 @@ namespace {
 using MaskImage = itk::Image<std::uint8_t, 3>;
 using ComponentImage = itk::Image<std::uint32_t, 3>;
 
-// Components of `mask` numbered 1, 2, ... by decreasing size; those under minVoxels become 0.
-Grid<std::uint32_t> sortedComponents(const Mask& mask, std::int64_t minVoxels,
-                                     Connectivity connectivity = Connectivity::Full) {
+// Components of `mask` numbered 1, 2, ... by decreasing size.
+Grid<std::uint32_t> sortedComponents(const Mask& mask, Connectivity connectivity) {
   auto label = itk::ConnectedComponentImageFilter<MaskImage, ComponentImage>::New();
   label->SetInput(detail::toItk(mask));
   label->SetFullyConnected(connectivity == Connectivity::Full);
   auto relabel = itk::RelabelComponentImageFilter<ComponentImage, ComponentImage>::New();
   relabel->SetInput(label->GetOutput());
-  relabel->SetMinimumObjectSize(static_cast<itk::SizeValueType>(std::max<std::int64_t>(minVoxels, 0)));
   relabel->Update();
   return detail::fromItk<std::uint32_t>(relabel->GetOutput());
 }
@@ -36,19 +36,13 @@ Grid<std::uint32_t> components(const Mask& mask) {
   return detail::fromItk<std::uint32_t>(label->GetOutput());
 }
 
-Mask selectWhere(const Grid<std::uint32_t>& components, bool largestOnly) {
-  Mask out(components.geometry);
-  for (std::size_t n = 0; n < out.values.size(); ++n) {
-    const std::uint32_t c = components.values[n];
-    out.values[n] = largestOnly ? c == 1 : c != 0;
-  }
-  return out;
-}
-
 }  // namespace
 
 Mask largestComponent(const Mask& mask, Connectivity connectivity) {
-  return selectWhere(sortedComponents(mask, 0, connectivity), true);
+  const Grid<std::uint32_t> sorted = sortedComponents(mask, connectivity);
+  Mask out(sorted.geometry);
+  for (std::size_t n = 0; n < out.values.size(); ++n) out.values[n] = sorted.values[n] == 1;
+  return out;
 }
 
 Mask componentsTouching(const Mask& mask, const Mask& seeds) {
@@ -67,7 +61,9 @@ Mask componentsTouching(const Mask& mask, const Mask& seeds) {
 }
 
 Mask removeSmallComponents(const Mask& mask, std::int64_t minVoxels) {
-  return selectWhere(sortedComponents(mask, minVoxels), false);
+  Mask kept = mask;
+  dropSmallPieces(kept, minVoxels);
+  return kept;
 }
 
 }  // namespace vesalius::segmentation

@@ -22,10 +22,11 @@ TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
                     surface = path("hip_fitted.vtp"), report = path("hip_fit.json");
   sampleBoundary("hip_left", 150, 1, icp);
   sampleBoundary("hip_left", 1000, 2, check);
+  // The closed surface is coarsened as the tet target allows (tet_budget.h), as for any template.
   const CommandResult r =
-      runVesalius({"fit", "--template", kTemplate, "--icp", icp, "--unattached", "--target-tets", "5000",
-                   "--template-faces", "1500", "--iterations", "3", "--refits", "1", "--out", out, "--surface-out", surface,
-                   "--report", report, "--progress", "none", "--force"});
+      runVesalius({"fit", "--template", kTemplate, "--icp", icp, "--unattached", "--target-tets", "5000", "--iterations",
+                   "3", "--refits", "1", "--out", out, "--surface-out", surface, "--report", report, "--progress",
+                   "none", "--force"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectContains(r.err, "1 boundary edges, 5 non-manifold edges");
 
@@ -44,8 +45,8 @@ TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
   EXPECT_LT(R[0][2].get<double>(), -0.95);
   EXPECT_LT(R[1][0].get<double>(), -0.95);
   EXPECT_GT(R[2][1].get<double>(), 0.95);
-  EXPECT_NEAR(m["placement"]["scale"].get<double>(), 1000.0, 200.0);  // measured 1111
-  // Measured 2.96 -> 1.20 mm after 3 ICP iterations, then 0.20 mm after one refit from that shape (the
+  EXPECT_NEAR(m["placement"]["scale"].get<double>(), 1000.0, 200.0);  // measured 1124
+  // Measured 2.90 -> 0.83 mm after 3 ICP iterations, then 0.24 mm after one refit from that shape (the
   // issue asks 0.5).
   EXPECT_GT(before, 2.0 * after);
   EXPECT_LT(after, 0.5);
@@ -57,11 +58,11 @@ TEST(CliFitPelvis, OpenSimHipBoneFittedToTheHipLabel) {
   const double meanDistance = meanDistanceToSurface(markerPositions(check), surface);
   RecordProperty("boundary_to_fitted_mean_mm", std::to_string(meanDistance));
   EXPECT_LT(meanDistance, ctVoxelMm());
-  EXPECT_LT(meanDistance, 2.0);  // measured 1.23 mm on the 3 mm grid
+  EXPECT_LT(meanDistance, 2.0);  // measured 1.31 mm on the 3 mm grid
 
   const double ratio = m["volume_mm3"]["fitted"].get<double>() / ctLabelVolumeMm3("hip_left");
   RecordProperty("volume_over_label", std::to_string(ratio));
-  EXPECT_NEAR(ratio, 1.0, 0.2);  // measured 1.11 (the markers lie on the smoothed label surface, outside the voxel centres)
+  EXPECT_NEAR(ratio, 1.0, 0.2);  // measured 1.17 (the markers lie on the smoothed label surface, outside the voxel centres)
 }
 
 }  // namespace

@@ -80,4 +80,9 @@ MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F) {
   return N;
 }
 
+Eigen::AlignedBox3d boundingBox(const MatrixX3d& V) {
+  return V.rows() ? Eigen::AlignedBox3d(V.colwise().minCoeff().transpose(), V.colwise().maxCoeff().transpose())
+                  : Eigen::AlignedBox3d();
+}
+
 }  // namespace vesalius

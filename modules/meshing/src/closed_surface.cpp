@@ -4,6 +4,7 @@
 #include "well_composed.h"
 #include "vesalius/core/error.h"
 #include "vesalius/core/label_map.h"
+#include "vesalius/core/small_pieces.h"
 #include "vesalius/meshing/label_surface.h"
 #include "vesalius/meshing/mesh_volume.h"
 #include "vesalius/meshing/winding_mask.h"
@@ -34,50 +35,18 @@ GridGeometry windingGrid(const TriMesh& mesh, int resolution) {
   return coveringGrid({&mesh}, grid);
 }
 
-// Label 1 where the winding number is >= 1/2 (winding_mask.h); the grid's outer layer, two voxels beyond
-// the mesh's bounding box, stays 0 as makeWellComposed requires.
+// Pieces of the solid smaller than a 2x2x2 block are below the grid's resolution: single voxels where the
+// approximate winding number of a fin (two back-to-back triangles, exactly 0 beside them) strays above 1/2.
+constexpr std::int64_t kLeastPieceVoxels = 8;
+
+// Label 1 where the winding number is >= 1/2 (winding_mask.h), but for pieces under kLeastPieceVoxels; the
+// grid's outer layer, two voxels beyond the mesh's bounding box, stays 0 as makeWellComposed requires.
 Grid<Label> insideVoxels(const TriMesh& mesh, const GridGeometry& g, const WindingNumberOptions& options) {
-  const Grid<std::uint8_t> mask = windingNumberMask(mesh, g, options);
+  Grid<std::uint8_t> mask = windingNumberMask(mesh, g, options);
+  dropSmallPieces(mask, kLeastPieceVoxels);
   Grid<Label> inside(g, 0);
   std::copy(mask.values.begin(), mask.values.end(), inside.values.begin());
   return inside;
-}
-
-// Pieces of the solid smaller than a 2x2x2 block are below the grid's resolution: single voxels where the
-// approximate winding number of a fin (two back-to-back triangles, exactly 0 beside them) strays above 1/2.
-constexpr long kLeastPieceVoxels = 8;
-
-// Removes the 26-connected pieces of label 1 with fewer than kLeastPieceVoxels voxels.
-void dropSpecks(Grid<Label>& inside) {
-  const GridGeometry& g = inside.geometry;
-  std::vector<bool> seen(inside.values.size(), false);
-  std::vector<Eigen::Vector3i> piece, stack;
-  for (int k = 0; k < g.size.z(); ++k)
-    for (int j = 0; j < g.size.y(); ++j)
-      for (int i = 0; i < g.size.x(); ++i) {
-        const std::int64_t start = g.linearIndex(i, j, k);
-        if (inside.values[std::size_t(start)] != 1 || seen[std::size_t(start)]) continue;
-        piece.clear();
-        stack.assign(1, Eigen::Vector3i(i, j, k));
-        seen[std::size_t(start)] = true;
-        while (!stack.empty()) {
-          const Eigen::Vector3i v = stack.back();
-          stack.pop_back();
-          piece.push_back(v);
-          for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-              for (int dx = -1; dx <= 1; ++dx) {
-                const Eigen::Vector3i n = v + Eigen::Vector3i(dx, dy, dz);
-                if (!g.contains(n.x(), n.y(), n.z())) continue;
-                const std::int64_t at = g.linearIndex(n.x(), n.y(), n.z());
-                if (inside.values[std::size_t(at)] != 1 || seen[std::size_t(at)]) continue;
-                seen[std::size_t(at)] = true;
-                stack.push_back(n);
-              }
-        }
-        if (long(piece.size()) >= kLeastPieceVoxels) continue;
-        for (const Eigen::Vector3i& v : piece) inside.at(v.x(), v.y(), v.z()) = 0;
-      }
 }
 
 }  // namespace
@@ -88,7 +57,6 @@ TriMesh closedSurface(const TriMesh& mesh, const ClosedSurfaceOptions& options) 
   solid.labels = insideVoxels(mesh, windingGrid(mesh, options.resolution), options.winding);
   if (std::find(solid.labels.values.begin(), solid.labels.values.end(), Label(1)) == solid.labels.values.end())
     throw BadInput("", "the surface encloses no voxel at resolution " + std::to_string(options.resolution));
-  dropSpecks(solid.labels);
   // Voxels meeting across an edge or a corner only would give the iso-surface non-manifold edges.
   detail::makeWellComposed(solid.labels);
   SurfaceOptions surface;

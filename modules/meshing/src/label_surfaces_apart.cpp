@@ -2,6 +2,7 @@
 #include "vesalius/meshing/label_surfaces_apart.h"
 
 #include "vesalius/core/error.h"
+#include "vesalius/core/mesh_measures.h"
 #include "vesalius/meshing/winding_number.h"
 
 #include <Eigen/Geometry>
@@ -12,11 +13,6 @@
 namespace vesalius::meshing {
 
 namespace {
-
-Eigen::AlignedBox3d boxOf(const MatrixX3d& V) {
-  return V.rows() ? Eigen::AlignedBox3d(V.colwise().minCoeff().transpose(), V.colwise().maxCoeff().transpose())
-                  : Eigen::AlignedBox3d();
-}
 
 struct Crossing {
   long inside = 0;
@@ -31,7 +27,7 @@ Crossing crossings(const std::vector<TriMesh*>& surfaces, const std::vector<std:
   Crossing c;
   std::vector<Eigen::AlignedBox3d> boxes;
   for (const TriMesh* s : surfaces) {
-    boxes.push_back(boxOf(s->V));
+    boxes.push_back(boundingBox(s->V));
     c.moves.push_back(MatrixX3d::Zero(s->V.rows(), 3));
   }
   for (std::size_t i = 0; i < surfaces.size(); ++i)

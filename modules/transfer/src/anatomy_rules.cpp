@@ -244,10 +244,7 @@ void measureStraightness(const ReferenceAnatomy& reference, const ReferenceAnato
 std::map<std::pair<int, int>, Interpenetration> interpenetrations(const ReferenceAnatomy& anatomy,
                                                                    const std::vector<int>& tissues, long& boxPairs) {
   std::vector<Eigen::AlignedBox3d> boxes(anatomy.tissues.size());
-  for (const int t : tissues) {
-    const MatrixX3d& V = anatomy.tissues[std::size_t(t)].mesh.V;
-    boxes[std::size_t(t)] = Eigen::AlignedBox3d(V.colwise().minCoeff().transpose(), V.colwise().maxCoeff().transpose());
-  }
+  for (const int t : tissues) boxes[std::size_t(t)] = boundingBox(anatomy.tissues[std::size_t(t)].mesh.V);
   boxPairs = 0;
   std::map<std::pair<int, int>, Interpenetration> pairs;
   for (const int b : tissues) {

@@ -16,11 +16,6 @@ namespace vesalius::transfer {
 
 namespace {
 
-Eigen::AlignedBox3d boxOf(const MatrixX3d& V) {
-  return V.rows() ? Eigen::AlignedBox3d(V.colwise().minCoeff().transpose(), V.colwise().maxCoeff().transpose())
-                  : Eigen::AlignedBox3d();
-}
-
 // The vertices of `mesh`, then its edges' midpoints and its faces' centroids.
 MatrixX3d surfacePoints(const TriMesh& mesh) {
   std::set<std::pair<int, int>> edges;
@@ -74,7 +69,7 @@ SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std
     }
     for (const BentTissue& t : bent) {
       const MatrixX3d V = P.middleRows(t.first, t.vertices);
-      const Eigen::AlignedBox3d box = boxOf(V);
+      const Eigen::AlignedBox3d box = boundingBox(V);
       for (const FixedTissue& f : fixed) {
         if (!f.box.intersects(box)) continue;
         std::vector<Eigen::Index> rows;
@@ -110,13 +105,13 @@ TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<B
   std::vector<FixedTissue> fixed;
   for (std::size_t t = 0; t < tissues.size(); ++t)
     if (roles[t] == BendRole::Fixed && tissues[t].mesh.F.rows() > 0)
-      fixed.push_back({&tissues[t].mesh, boxOf(tissues[t].mesh.V), vertexNormals(tissues[t].mesh.V, tissues[t].mesh.F)});
+      fixed.push_back({&tissues[t].mesh, boundingBox(tissues[t].mesh.V), vertexNormals(tissues[t].mesh.V, tissues[t].mesh.F)});
   std::vector<BentTissue> bent;
   MatrixX3d P(0, 3);
   for (std::size_t t = 0; t < tissues.size(); ++t) {
     const TriMesh& mesh = tissues[t].mesh;
     if (roles[t] != BendRole::Bent || mesh.F.rows() == 0) continue;
-    const Eigen::AlignedBox3d box = boxOf(mesh.V);
+    const Eigen::AlignedBox3d box = boundingBox(mesh.V);
     if (std::none_of(fixed.begin(), fixed.end(), [&](const FixedTissue& f) { return f.box.intersects(box); })) continue;
     const MatrixX3d points = surfacePoints(mesh);
     bent.push_back({P.rows(), mesh.V.rows(), points.rows(), &mesh.F});
@@ -134,13 +129,13 @@ TissuesBentApart bendTissuesApart(ReferenceAnatomy& anatomy, const std::vector<B
   // The bend is zero beyond the reach of every centre.
   Eigen::AlignedBox3d reach;
   for (std::size_t r = 0; r < bend.centres.size(); ++r) {
-    const Eigen::AlignedBox3d b = boxOf(bend.centres[r]);
+    const Eigen::AlignedBox3d b = boundingBox(bend.centres[r]);
     reach.extend(b.min() - Eigen::Vector3d::Constant(bend.radiiMm[r]));
     reach.extend(b.max() + Eigen::Vector3d::Constant(bend.radiiMm[r]));
   }
   std::vector<std::string> moved;
   for (std::size_t t = 0; t < tissues.size(); ++t) {
-    if (roles[t] != BendRole::Bent || tissues[t].mesh.V.rows() == 0 || !boxOf(tissues[t].mesh.V).intersects(reach)) continue;
+    if (roles[t] != BendRole::Bent || tissues[t].mesh.V.rows() == 0 || !boundingBox(tissues[t].mesh.V).intersects(reach)) continue;
     tissues[t].mesh.V = bend.apply(tissues[t].mesh.V);
     moved.push_back(tissues[t].name);
   }

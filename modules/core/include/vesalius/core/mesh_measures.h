@@ -1,8 +1,10 @@
 // Measures of triangle surfaces used to check meshes everywhere: edge counts (is it a closed
-// 2-manifold?), connected components, triangle areas, enclosed volume, vertex normals.
+// 2-manifold?), connected components, triangle areas, enclosed volume, vertex normals, bounding boxes.
 #pragma once
 
 #include "vesalius/core/mesh.h"
+
+#include <Eigen/Geometry>
 
 namespace vesalius {
 
@@ -32,5 +34,8 @@ double enclosedVolume(const MatrixX3d& V, const MatrixX3i& F);
 // Area-weighted vertex normals: per vertex, the sum of its triangles' (b − a) × (c − a), of unit length;
 // zero for a vertex no triangle uses. #V by 3, pointing out of counter-clockwise triangles.
 MatrixX3d vertexNormals(const MatrixX3d& V, const MatrixX3i& F);
+
+// The box of the rows of V (#V by 3); empty when V has no rows.
+Eigen::AlignedBox3d boundingBox(const MatrixX3d& V);
 
 }  // namespace vesalius
