@@ -70,24 +70,28 @@ SkinDistanceFunction reachingIn(const std::vector<FixedTissue>& fixed, const std
     for (const BentTissue& t : bent) {
       const MatrixX3d V = P.middleRows(t.first, t.vertices);
       const Eigen::AlignedBox3d box = boundingBox(V);
+      // The fixed tissues' vertices in the bent tissue's box, tested against one tree of it.
+      std::vector<std::pair<const FixedTissue*, Eigen::Index>> near;
       for (const FixedTissue& f : fixed) {
         if (!f.box.intersects(box)) continue;
-        std::vector<Eigen::Index> rows;
         for (Eigen::Index v = 0; v < f.mesh->V.rows(); ++v)
-          if (box.contains(f.mesh->V.row(v).transpose()) && counts(f.mesh->V.row(v).transpose())) rows.push_back(v);
-        if (rows.empty()) continue;
-        for (const meshing::PointInside& in : meshing::pointsInside(V, *t.F, MatrixX3d(f.mesh->V(rows, Eigen::all)))) {
-          const Eigen::Index v = rows[std::size_t(in.row)];
-          Eigen::Index nearest = 0;
-          if (rule == Straddle::MoveOff) {
-            (P.middleRows(t.first, t.rows).rowwise() - f.mesh->V.row(v)).rowwise().squaredNorm().minCoeff(&nearest);
-            deepen(d, t.first + nearest, std::sqrt(in.closest.squaredDistance), -f.normals.row(v));
-          } else {
-            const Eigen::RowVector3d closest = in.closest.point.transpose(), outward = closest - f.mesh->V.row(v);
-            if (outward.norm() < 1e-9) continue;
-            (P.middleRows(t.first, t.rows).rowwise() - closest).rowwise().squaredNorm().minCoeff(&nearest);
-            deepen(d, t.first + nearest, outward.norm(), outward.normalized());
-          }
+          if (box.contains(f.mesh->V.row(v).transpose()) && counts(f.mesh->V.row(v).transpose())) near.emplace_back(&f, v);
+      }
+      if (near.empty()) continue;
+      MatrixX3d Q(Eigen::Index(near.size()), 3);
+      for (std::size_t k = 0; k < near.size(); ++k) Q.row(Eigen::Index(k)) = near[k].first->mesh->V.row(near[k].second);
+      for (const meshing::PointInside& in : meshing::pointsInside(V, *t.F, Q)) {
+        const FixedTissue& f = *near[std::size_t(in.row)].first;
+        const Eigen::Index v = near[std::size_t(in.row)].second;
+        Eigen::Index nearest = 0;
+        if (rule == Straddle::MoveOff) {
+          (P.middleRows(t.first, t.rows).rowwise() - f.mesh->V.row(v)).rowwise().squaredNorm().minCoeff(&nearest);
+          deepen(d, t.first + nearest, std::sqrt(in.closest.squaredDistance), -f.normals.row(v));
+        } else {
+          const Eigen::RowVector3d closest = in.closest.point.transpose(), outward = closest - f.mesh->V.row(v);
+          if (outward.norm() < 1e-9) continue;
+          (P.middleRows(t.first, t.rows).rowwise() - closest).rowwise().squaredNorm().minCoeff(&nearest);
+          deepen(d, t.first + nearest, outward.norm(), outward.normalized());
         }
       }
     }
