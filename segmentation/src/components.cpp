@@ -8,7 +8,6 @@
 #include <itkConnectedComponentImageFilter.h>
 #include <itkRelabelComponentImageFilter.h>
 
-#include <algorithm>
 #include <vector>
 
 namespace vesalius::segmentation {
