@@ -37,11 +37,31 @@ class Neighbours {
   std::array<Eigen::Vector3i, 26> step_{};
 };
 
-}  // namespace
-
 // Voxels of a piece already counted, until the end: the mask itself marks what has been seen, so each step
 // reads one array instead of two.
 constexpr std::uint8_t kCounted = 2;
+
+// Sets the 26-connected piece of voxels valued `from` that holds `start` to `to`; returns its voxel count.
+std::int64_t flood(Grid<std::uint8_t>& mask, const Neighbours& neighbours, const Eigen::Vector3i& start,
+                   std::uint8_t from, std::uint8_t to, std::vector<Eigen::Vector3i>& stack) {
+  std::int64_t voxels = 0;
+  stack.assign(1, start);
+  mask.at(start.x(), start.y(), start.z()) = to;
+  while (!stack.empty()) {
+    const Eigen::Vector3i v = stack.back();
+    stack.pop_back();
+    ++voxels;
+    neighbours.forEach(v, [&](const Eigen::Vector3i& w, std::int64_t at) {
+      if (mask.values[std::size_t(at)] == from) {
+        mask.values[std::size_t(at)] = to;
+        stack.push_back(w);
+      }
+    });
+  }
+  return voxels;
+}
+
+}  // namespace
 
 std::int64_t dropSmallPieces(Grid<std::uint8_t>& mask, std::int64_t minVoxels) {
   for (std::uint8_t& v : mask.values) v = v ? 1 : 0;
@@ -53,37 +73,11 @@ std::int64_t dropSmallPieces(Grid<std::uint8_t>& mask, std::int64_t minVoxels) {
   for (int k = 0; k < g.size.z(); ++k)
     for (int j = 0; j < g.size.y(); ++j)
       for (int i = 0; i < g.size.x(); ++i) {
-        const std::int64_t start = g.linearIndex(i, j, k);
-        if (mask.values[std::size_t(start)] != 1) continue;
+        if (mask.at(i, j, k) != 1) continue;
         // Count the piece; a small one is flooded again from its start to clear it, so no piece is listed.
-        std::int64_t voxels = 0;
-        stack.assign(1, Eigen::Vector3i(i, j, k));
-        mask.values[std::size_t(start)] = kCounted;
-        while (!stack.empty()) {
-          const Eigen::Vector3i v = stack.back();
-          stack.pop_back();
-          ++voxels;
-          neighbours.forEach(v, [&](const Eigen::Vector3i& w, std::int64_t at) {
-            if (mask.values[std::size_t(at)] == 1) {
-              mask.values[std::size_t(at)] = kCounted;
-              stack.push_back(w);
-            }
-          });
-        }
-        if (voxels >= minVoxels) continue;
-        stack.assign(1, Eigen::Vector3i(i, j, k));
-        mask.values[std::size_t(start)] = 0;
-        while (!stack.empty()) {
-          const Eigen::Vector3i v = stack.back();
-          stack.pop_back();
-          neighbours.forEach(v, [&](const Eigen::Vector3i& w, std::int64_t at) {
-            if (mask.values[std::size_t(at)]) {
-              mask.values[std::size_t(at)] = 0;
-              stack.push_back(w);
-            }
-          });
-        }
-        cleared += voxels;
+        const Eigen::Vector3i start(i, j, k);
+        const std::int64_t voxels = flood(mask, neighbours, start, 1, kCounted, stack);
+        if (voxels < minVoxels) cleared += flood(mask, neighbours, start, kCounted, 0, stack);
       }
   for (std::uint8_t& v : mask.values)
     if (v == kCounted) v = 1;
